@@ -1,0 +1,41 @@
+# Finds LCM 1.3.1 as Debian ships it (no CMake config; its pkg-config file needs glib's,
+# which liblcm-dev does not pull in) and turns .lcm files into C++ headers.
+
+find_path(LCM_INCLUDE_DIR lcm/lcm-cpp.hpp REQUIRED)
+find_library(LCM_LIBRARY lcm REQUIRED)
+find_program(LCM_GEN lcm-gen REQUIRED)
+if(NOT TARGET lcm::lcm)
+  add_library(lcm::lcm UNKNOWN IMPORTED)
+  set_target_properties(lcm::lcm PROPERTIES
+    IMPORTED_LOCATION "${LCM_LIBRARY}"
+    INTERFACE_INCLUDE_DIRECTORIES "${LCM_INCLUDE_DIR}")
+endif()
+
+# minenav_lcm_types(TARGET <name> FILES a.lcm b.lcm ...)
+# One add_custom_command per .lcm file, so editing one type regenerates just its header
+# and rebuilds what includes it. The result is an INTERFACE target whose include
+# directory is SYSTEM: generated code does not trip our strict warnings.
+function(minenav_lcm_types)
+  cmake_parse_arguments(ARG "" "TARGET" "FILES" ${ARGN})
+  set(out_dir "${CMAKE_CURRENT_BINARY_DIR}/lcmtypes_cpp")
+  set(headers)
+  foreach(lcm_file IN LISTS ARG_FILES)
+    get_filename_component(abs "${lcm_file}" ABSOLUTE)
+    get_filename_component(stem "${lcm_file}" NAME_WE)
+    set(header "${out_dir}/minenav/${stem}.hpp")
+    add_custom_command(
+      OUTPUT "${header}"
+      COMMAND "${LCM_GEN}" --cpp --cpp-std c++11 --cpp-hpath "${out_dir}" "${abs}"
+      DEPENDS "${abs}"
+      COMMENT "lcm-gen ${stem}.lcm"
+      VERBATIM)
+    list(APPEND headers "${header}")
+    file(WRITE "${CMAKE_BINARY_DIR}/no_lcm/minenav/${stem}.hpp"
+      "#error \"LCM message type in an algorithm library: convert in the node (common/node/conversions.h).\"\n")
+  endforeach()
+  add_custom_target(${ARG_TARGET}_gen DEPENDS ${headers})
+  add_library(${ARG_TARGET} INTERFACE)
+  add_dependencies(${ARG_TARGET} ${ARG_TARGET}_gen)
+  target_include_directories(${ARG_TARGET} SYSTEM INTERFACE "${out_dir}")
+  target_link_libraries(${ARG_TARGET} INTERFACE lcm::lcm)
+endfunction()

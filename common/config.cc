@@ -1,0 +1,333 @@
+#include "common/config.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+
+#include "common/angle.h"
+
+namespace minenav {
+
+namespace {
+
+std::string Trim(const std::string& s) {
+  const auto b = s.find_first_not_of(" \t\r\n");
+  if (b == std::string::npos) return "";
+  const auto e = s.find_last_not_of(" \t\r\n");
+  return s.substr(b, e - b + 1);
+}
+
+std::string FormatDouble(double v) {
+  std::ostringstream os;
+  os << std::setprecision(10) << v;
+  return os.str();
+}
+
+template <typename T>
+T ParseInteger(const std::string& text, const std::string& where, T min, T max) {
+  size_t used = 0;
+  long long v = 0;
+  try {
+    v = std::stoll(text, &used);
+  } catch (const std::exception&) {
+    throw UsageError(where + ": '" + text + "' is not an integer");
+  }
+  if (used != text.size()) throw UsageError(where + ": '" + text + "' is not an integer");
+  if (v < static_cast<long long>(min) || v > static_cast<long long>(max))
+    throw UsageError(where + ": " + text + " is outside [" + std::to_string(min) + ", " +
+                     std::to_string(max) + "]");
+  return static_cast<T>(v);
+}
+
+}  // namespace
+
+double ParseNumber(const std::string& raw, const std::string& what, bool angle) {
+  std::string text = Trim(raw);
+  double scale = 1.0;
+  auto ends_with = [&](const std::string& suffix) {
+    return text.size() > suffix.size() && text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
+  };
+  if (angle && ends_with("deg")) {
+    scale = kPi / 180.0;
+    text.resize(text.size() - 3);
+  } else if (angle && ends_with("rad")) {
+    text.resize(text.size() - 3);
+  }
+  size_t used = 0;
+  double v = 0;
+  try {
+    v = std::stod(text, &used);
+  } catch (const std::exception&) {
+    throw UsageError(what + ": '" + raw + "' is not a number");
+  }
+  if (used != text.size() || !std::isfinite(v)) throw UsageError(what + ": '" + raw + "' is not a finite number");
+  return v * scale;
+}
+
+std::vector<double> ParseNumberList(const std::string& text, const std::string& what, size_t expected_count) {
+  std::vector<double> out;
+  std::istringstream ss(text);
+  std::string item;
+  while (std::getline(ss, item, ',')) out.push_back(ParseNumber(item, what, /*angle=*/true));
+  if (expected_count && out.size() != expected_count)
+    throw UsageError(what + ": '" + text + "' has " + std::to_string(out.size()) + " values, expected " +
+                     std::to_string(expected_count));
+  return out;
+}
+
+ConfigSchema::ConfigSchema(std::string program, std::string summary)
+    : program_(std::move(program)), summary_(std::move(summary)) {}
+
+void ConfigSchema::Add(Entry entry) {
+  if (Find(entry.key)) throw std::logic_error("option '" + entry.key + "' declared twice");
+  entry.default_text = entry.get();
+  entries_.push_back(std::move(entry));
+}
+
+ConfigSchema::Entry* ConfigSchema::Find(const std::string& key) {
+  for (auto& e : entries_)
+    if (e.key == key) return &e;
+  return nullptr;
+}
+
+void ConfigSchema::AddDouble(const std::string& key, double* value, const std::string& unit,
+                             const std::string& help, double min, double max) {
+  Entry e;
+  e.key = key;
+  e.unit = unit;
+  e.help = help;
+  e.kind = "number";
+  const bool angle = unit == "rad";
+  e.set = [value, min, max, angle, key](const std::string& text, const std::string& where) {
+    const double v = ParseNumber(text, where + ": " + key, angle);
+    if (v < min || v > max)
+      throw UsageError(where + ": " + key + " = " + text + " is outside [" + FormatDouble(min) + ", " +
+                       FormatDouble(max) + "]");
+    *value = v;
+  };
+  e.get = [value] { return FormatDouble(*value); };
+  Add(std::move(e));
+}
+
+void ConfigSchema::AddInt(const std::string& key, int* value, const std::string& help, int min, int max) {
+  Entry e;
+  e.key = key;
+  e.help = help;
+  e.kind = "integer";
+  e.set = [value, min, max, key](const std::string& text, const std::string& where) {
+    *value = ParseInteger<int>(Trim(text), where + ": " + key, min, max);
+  };
+  e.get = [value] { return std::to_string(*value); };
+  Add(std::move(e));
+}
+
+void ConfigSchema::AddInt64(const std::string& key, int64_t* value, const std::string& help, int64_t min,
+                            int64_t max) {
+  Entry e;
+  e.key = key;
+  e.help = help;
+  e.kind = "integer";
+  e.set = [value, min, max, key](const std::string& text, const std::string& where) {
+    *value = ParseInteger<int64_t>(Trim(text), where + ": " + key, min, max);
+  };
+  e.get = [value] { return std::to_string(*value); };
+  Add(std::move(e));
+}
+
+void ConfigSchema::AddBool(const std::string& key, bool* value, const std::string& help) {
+  Entry e;
+  e.key = key;
+  e.help = help;
+  e.kind = "bool";
+  e.set = [value, key](const std::string& raw, const std::string& where) {
+    const std::string text = Trim(raw);
+    if (text == "true" || text == "1" || text == "yes" || text == "on") *value = true;
+    else if (text == "false" || text == "0" || text == "no" || text == "off") *value = false;
+    else throw UsageError(where + ": " + key + " = '" + raw + "' is not true or false");
+  };
+  e.get = [value] { return std::string(*value ? "true" : "false"); };
+  Add(std::move(e));
+}
+
+void ConfigSchema::AddString(const std::string& key, std::string* value, const std::string& help,
+                             std::vector<std::string> choices) {
+  Entry e;
+  e.key = key;
+  e.help = help;
+  e.kind = "string";
+  if (!choices.empty()) {
+    e.unit = "";
+    for (size_t i = 0; i < choices.size(); ++i) e.unit += (i ? "|" : "") + choices[i];
+  }
+  e.set = [value, choices, key](const std::string& raw, const std::string& where) {
+    const std::string text = Trim(raw);
+    if (!choices.empty() && std::find(choices.begin(), choices.end(), text) == choices.end()) {
+      std::string list;
+      for (size_t i = 0; i < choices.size(); ++i) list += (i ? ", " : "") + choices[i];
+      throw UsageError(where + ": " + key + " = '" + text + "' is not one of " + list);
+    }
+    *value = text;
+  };
+  e.get = [value] { return *value; };
+  Add(std::move(e));
+}
+
+void ConfigSchema::AddChannel(const std::string& key, std::string* value, const std::string& direction,
+                              const std::string& type, const std::string& help) {
+  AddString(key, value, help);
+  Entry& e = entries_.back();
+  e.kind = "channel";
+  e.channel_direction = direction;
+  e.channel_type = type;
+  auto inner = e.set;
+  e.set = [inner, key](const std::string& text, const std::string& where) {
+    if (Trim(text).empty()) throw UsageError(where + ": " + key + " must name a channel");
+    inner(text, where);
+  };
+}
+
+void ConfigSchema::SetPositional(const std::string& usage, size_t min_count, size_t max_count) {
+  positional_usage_ = usage;
+  positional_min_ = min_count;
+  positional_max_ = max_count;
+}
+
+void ConfigSchema::Set(const std::string& key, const std::string& text, const std::string& where) {
+  Entry* e = Find(key);
+  if (!e) throw UsageError(where + ": unknown option '" + key + "' (see --help)");
+  e->set(text, where);
+}
+
+void ConfigSchema::LoadFile(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw UsageError(path + ": cannot open config file");
+  std::string line;
+  int line_no = 0;
+  while (std::getline(in, line)) {
+    ++line_no;
+    const std::string where = path + ":" + std::to_string(line_no);
+    const auto hash = line.find('#');
+    const std::string content = Trim(hash == std::string::npos ? line : line.substr(0, hash));
+    if (content.empty()) continue;
+    const auto eq = content.find('=');
+    if (eq == std::string::npos) throw UsageError(where + ": expected 'key = value', got '" + content + "'");
+    Set(Trim(content.substr(0, eq)), Trim(content.substr(eq + 1)), where);
+  }
+}
+
+ParseOutcome ConfigSchema::Parse(int argc, const char* const* argv) {
+  std::vector<std::string> args;
+  for (int i = 1; i < argc; ++i) args.emplace_back(argv[i]);
+  return Parse(args);
+}
+
+ParseOutcome ConfigSchema::Parse(const std::vector<std::string>& args) {
+  bool help = false, print_config = false;
+  // Config files first, wherever they appear, so that flags override them.
+  for (size_t i = 0; i < args.size(); ++i) {
+    if (args[i] == "--help" || args[i] == "-h") help = true;
+    if (args[i] == "--config") {
+      if (i + 1 >= args.size()) throw UsageError("--config needs a file name");
+      LoadFile(args[++i]);
+    } else if (args[i].rfind("--config=", 0) == 0) {
+      LoadFile(args[i].substr(9));
+    }
+  }
+  if (help) {
+    std::fputs(HelpText().c_str(), stdout);
+    return ParseOutcome::kExit;
+  }
+  positional_.clear();
+  for (size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    if (a == "--config") {
+      ++i;
+      continue;
+    }
+    if (a.rfind("--config=", 0) == 0) continue;
+    if (a == "--print-config") {
+      print_config = true;
+      continue;
+    }
+    if (a.rfind("--", 0) != 0 || a == "--") {
+      positional_.push_back(a);
+      continue;
+    }
+    std::string key = a.substr(2), value;
+    const auto eq = key.find('=');
+    if (eq != std::string::npos) {
+      value = key.substr(eq + 1);
+      key = key.substr(0, eq);
+    } else {
+      std::replace(key.begin(), key.end(), '-', '_');
+      Entry* e = Find(key);
+      if (!e) throw UsageError("unknown option --" + a.substr(2) + " (see --help)");
+      if (e->kind == "bool" && (i + 1 >= args.size() || args[i + 1].rfind("--", 0) == 0)) {
+        value = "true";  // bare --flag
+      } else {
+        if (i + 1 >= args.size()) throw UsageError("--" + a.substr(2) + " needs a value");
+        value = args[++i];
+      }
+    }
+    std::replace(key.begin(), key.end(), '-', '_');
+    Set(key, value, "--" + key);
+  }
+  if (positional_.size() < positional_min_ || positional_.size() > positional_max_) {
+    if (positional_max_ == 0) throw UsageError("unexpected argument '" + positional_.front() + "' (see --help)");
+    throw UsageError("expected " + positional_usage_ + " (see --help)");
+  }
+  if (print_config) {
+    std::fputs(ConfigText().c_str(), stdout);
+    return ParseOutcome::kExit;
+  }
+  return ParseOutcome::kRun;
+}
+
+std::string ConfigSchema::HelpText() const {
+  std::ostringstream os;
+  os << "Usage: " << program_ << " [--config FILE] [--key=value ...]"
+     << (positional_usage_.empty() ? "" : " " + positional_usage_) << "\n\n"
+     << summary_ << "\n";
+  auto print = [&](bool channels) {
+    for (const auto& e : entries_) {
+      if ((e.kind == "channel") != channels) continue;
+      std::string flag = "--" + e.key;
+      std::replace(flag.begin(), flag.end(), '_', '-');
+      os << "  " << std::left << std::setw(26) << flag << " ";
+      if (channels) {
+        os << e.channel_direction << " " << e.channel_type << " on '" << e.default_text << "'. " << e.help << "\n";
+      } else {
+        os << e.help;
+        if (!e.unit.empty()) os << " [" << e.unit << "]";
+        os << " (default: " << (e.default_text.empty() ? "\"\"" : e.default_text) << ")\n";
+      }
+    }
+  };
+  bool any_channel = std::any_of(entries_.begin(), entries_.end(), [](const Entry& e) { return e.kind == "channel"; });
+  if (any_channel) {
+    os << "\nChannels:\n";
+    print(true);
+  }
+  os << "\nOptions (also as 'key = value' lines in a --config file; flags override the file):\n";
+  print(false);
+  os << "  " << std::left << std::setw(26) << "--config FILE" << " read options from FILE first\n"
+     << "  " << std::setw(26) << "--print-config" << " print the effective configuration and exit\n"
+     << "  " << std::setw(26) << "--help" << " this text\n";
+  if (!epilog_.empty()) os << "\n" << epilog_ << (epilog_.back() == '\n' ? "" : "\n");
+  return os.str();
+}
+
+std::string ConfigSchema::ConfigText() const {
+  std::ostringstream os;
+  os << "# " << program_ << " configuration\n";
+  for (const auto& e : entries_) {
+    os << "# " << e.help;
+    if (!e.unit.empty()) os << " [" << e.unit << "]";
+    os << "\n" << e.key << " = " << e.get() << "\n";
+  }
+  return os.str();
+}
+
+}  // namespace minenav

@@ -1,0 +1,95 @@
+#pragma once
+// Parameters for every process: documented defaults, a config file, command-line
+// overrides, --help and --print-config. A module declares its options once:
+//
+//   ConfigSchema schema("vehicle_sim", "Skid-steer miner simulator.");
+//   schema.AddDouble("max_speed", &options.max_speed, "m/s", "Forward speed limit", 0.0, 5.0);
+//   if (schema.Parse(argc, argv) == ParseOutcome::kExit) return 0;
+//
+// Precedence: defaults < --config FILE (key = value lines, # comments) < --key=value
+// (or --key value). Unknown keys, bad values and out-of-range values throw UsageError
+// with a one-line message naming the file and line, or the flag. Exit code 2 for those.
+
+#include <cstdint>
+#include <functional>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace minenav {
+
+class UsageError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+enum class ParseOutcome { kRun, kExit };
+
+inline constexpr int kExitUsage = 2;    // bad flag, config or input file
+inline constexpr int kExitRuntime = 3;  // failure while running
+
+class ConfigSchema {
+ public:
+  ConfigSchema(std::string program, std::string summary);
+
+  void AddDouble(const std::string& key, double* value, const std::string& unit,
+                 const std::string& help, double min = -std::numeric_limits<double>::infinity(),
+                 double max = std::numeric_limits<double>::infinity());
+  void AddInt(const std::string& key, int* value, const std::string& help,
+              int min = std::numeric_limits<int>::min(), int max = std::numeric_limits<int>::max());
+  void AddInt64(const std::string& key, int64_t* value, const std::string& help,
+                int64_t min = std::numeric_limits<int64_t>::min(),
+                int64_t max = std::numeric_limits<int64_t>::max());
+  void AddBool(const std::string& key, bool* value, const std::string& help);
+  // `choices` empty = any string.
+  void AddString(const std::string& key, std::string* value, const std::string& help,
+                 std::vector<std::string> choices = {});
+  // A string option that names an LCM channel; --help lists these apart, with direction
+  // ("subscribes" / "publishes") and the message type.
+  void AddChannel(const std::string& key, std::string* value, const std::string& direction,
+                  const std::string& type, const std::string& help);
+
+  // Free-form text appended to --help (examples, exit codes).
+  void AddHelpEpilog(const std::string& text) { epilog_ += text; }
+  // Positional arguments: name shown in usage; min/max count.
+  void SetPositional(const std::string& usage, size_t min_count, size_t max_count);
+
+  // Handles --help, --print-config, --config FILE and --key=value. Returns kExit after
+  // printing help or config. Throws UsageError on anything wrong.
+  ParseOutcome Parse(int argc, const char* const* argv);
+  ParseOutcome Parse(const std::vector<std::string>& args);  // args without argv[0]
+
+  void LoadFile(const std::string& path);             // key = value lines
+  void Set(const std::string& key, const std::string& text, const std::string& where);
+
+  std::string HelpText() const;
+  std::string ConfigText() const;  // the effective configuration in file syntax
+  const std::vector<std::string>& positional() const { return positional_; }
+  const std::string& program() const { return program_; }
+
+ private:
+  struct Entry {
+    std::string key, unit, help, kind, default_text;
+    std::string channel_direction, channel_type;  // for channels only
+    std::function<void(const std::string& text, const std::string& where)> set;
+    std::function<std::string()> get;
+  };
+  Entry* Find(const std::string& key);
+  void Add(Entry entry);
+
+  std::string program_, summary_, epilog_;
+  std::vector<Entry> entries_;
+  std::string positional_usage_;
+  size_t positional_min_ = 0, positional_max_ = 0;
+  std::vector<std::string> positional_;
+};
+
+// Parses "0.33", "3.33deg" or "0.1rad" into radians when `angle` is true; plain doubles
+// otherwise. Throws UsageError naming `what`.
+double ParseNumber(const std::string& text, const std::string& what, bool angle = false);
+// "a,b,c" -> numbers; entries may carry "deg" when angle_mask says so.
+std::vector<double> ParseNumberList(const std::string& text, const std::string& what,
+                                    size_t expected_count);
+
+}  // namespace minenav

@@ -1,0 +1,232 @@
+#include "common/file_io.h"
+
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iomanip>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+namespace minenav {
+
+std::string ReadFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path + ": cannot open for reading");
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  if (in.bad()) throw InputError(path + ": read error");
+  return ss.str();
+}
+
+void WriteFileAtomically(const std::string& path, const std::string& content) {
+  const std::string tmp = path + ".tmp." + std::to_string(::getpid());
+  {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    if (!out) throw InputError(path + ": cannot open for writing");
+    out << content;
+    out.flush();
+    if (!out) {
+      std::remove(tmp.c_str());
+      throw InputError(path + ": write failed");
+    }
+  }
+  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
+    std::remove(tmp.c_str());
+    throw InputError(path + ": cannot rename temporary file into place");
+  }
+}
+
+// ---- segments JSON ----
+
+std::vector<Segment> ParseSegmentsJson(const std::string& text, const std::string& source_name) {
+  nlohmann::json doc;
+  try {
+    doc = nlohmann::json::parse(text);
+  } catch (const nlohmann::json::parse_error& e) {
+    throw InputError(source_name + ": not valid JSON (byte " + std::to_string(e.byte) + ")");
+  }
+  if (!doc.is_object() || !doc.contains("segments"))
+    throw InputError(source_name + ": expected an object with key \"segments\"");
+  const auto& segs = doc["segments"];
+  if (!segs.is_array()) throw InputError(source_name + ": \"segments\" is not an array");
+  std::vector<Segment> out;
+  out.reserve(segs.size());
+  for (size_t i = 0; i < segs.size(); ++i) {
+    const auto& s = segs[i];
+    const std::string where = source_name + ": segments[" + std::to_string(i) + "]";
+    if (!s.is_array() || s.size() != 4) throw InputError(where + " is not [x1, y1, x2, y2]");
+    double v[4];
+    for (size_t k = 0; k < 4; ++k) {
+      if (!s[k].is_number()) throw InputError(where + " has a non-numeric coordinate");
+      v[k] = s[k].get<double>();
+      if (!std::isfinite(v[k])) throw InputError(where + " has a non-finite coordinate");
+    }
+    out.emplace_back(v[0], v[1], v[2], v[3]);
+  }
+  return out;
+}
+
+std::vector<Segment> LoadSegmentsJson(const std::string& path) {
+  return ParseSegmentsJson(ReadFile(path), path);
+}
+
+std::string SegmentsToJson(const std::vector<Segment>& segments) {
+  std::ostringstream os;
+  os << std::setprecision(10) << "{\"segments\": [";
+  for (size_t i = 0; i < segments.size(); ++i) {
+    const Segment& s = segments[i];
+    os << (i ? ",\n  " : "\n  ") << "[" << s.a.x() << ", " << s.a.y() << ", " << s.b.x() << ", "
+       << s.b.y() << "]";
+  }
+  os << "\n]}\n";
+  return os.str();
+}
+
+void SaveSegmentsJson(const std::string& path, const std::vector<Segment>& segments) {
+  WriteFileAtomically(path, SegmentsToJson(segments));
+}
+
+// ---- CSV ----
+
+namespace {
+
+std::vector<std::string> SplitCsvLine(const std::string& line) {
+  std::vector<std::string> out;
+  std::string field;
+  std::istringstream ss(line);
+  while (std::getline(ss, field, ',')) {
+    // trim spaces and a trailing CR
+    const auto b = field.find_first_not_of(" \t\r");
+    const auto e = field.find_last_not_of(" \t\r");
+    out.push_back(b == std::string::npos ? "" : field.substr(b, e - b + 1));
+  }
+  if (!line.empty() && line.back() == ',') out.push_back("");
+  return out;
+}
+
+double ParseDouble(const std::string& s, const std::string& where) {
+  size_t used = 0;
+  double v = 0;
+  try {
+    v = std::stod(s, &used);
+  } catch (const std::exception&) {
+    throw InputError(where + ": '" + s + "' is not a number");
+  }
+  if (used != s.size()) throw InputError(where + ": '" + s + "' is not a number");
+  if (!std::isfinite(v)) throw InputError(where + ": '" + s + "' is not finite");
+  return v;
+}
+
+int64_t ParseInt64(const std::string& s, const std::string& where) {
+  size_t used = 0;
+  long long v = 0;
+  try {
+    v = std::stoll(s, &used);
+  } catch (const std::exception&) {
+    throw InputError(where + ": '" + s + "' is not an integer");
+  }
+  if (used != s.size()) throw InputError(where + ": '" + s + "' is not an integer");
+  return v;
+}
+
+// Calls row(fields, where) for every non-empty line after a header that must match.
+template <typename RowFn>
+void ForEachCsvRow(const std::string& text, const std::string& source_name,
+                   const std::vector<std::vector<std::string>>& allowed_headers, RowFn row) {
+  std::istringstream in(text);
+  std::string line;
+  int line_no = 0;
+  bool header_seen = false;
+  size_t columns = 0;
+  while (std::getline(in, line)) {
+    ++line_no;
+    if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+    const auto fields = SplitCsvLine(line);
+    const std::string where = source_name + ":" + std::to_string(line_no);
+    if (!header_seen) {
+      bool ok = false;
+      for (const auto& h : allowed_headers) ok = ok || fields == h;
+      if (!ok) {
+        std::string expected;
+        for (const auto& h : allowed_headers) {
+          if (!expected.empty()) expected += " or ";
+          for (size_t i = 0; i < h.size(); ++i) expected += (i ? "," : "") + h[i];
+        }
+        throw InputError(where + ": header is '" + line + "', expected " + expected);
+      }
+      header_seen = true;
+      columns = fields.size();
+      continue;
+    }
+    if (fields.size() != columns)
+      throw InputError(where + ": " + std::to_string(fields.size()) + " fields, expected " +
+                       std::to_string(columns));
+    row(fields, where);
+  }
+  if (!header_seen) throw InputError(source_name + ": empty file, no header");
+}
+
+}  // namespace
+
+std::vector<StampedPose> ParsePosesCsv(const std::string& text, const std::string& source_name) {
+  std::vector<StampedPose> out;
+  ForEachCsvRow(text, source_name, {{"utime", "x", "y", "theta"}},
+                [&](const std::vector<std::string>& f, const std::string& where) {
+                  out.push_back({ParseInt64(f[0], where),
+                                 Pose2(ParseDouble(f[1], where), ParseDouble(f[2], where),
+                                       ParseDouble(f[3], where))});
+                });
+  return out;
+}
+
+std::vector<StampedPose> LoadPosesCsv(const std::string& path) { return ParsePosesCsv(ReadFile(path), path); }
+
+std::string PosesToCsv(const std::vector<StampedPose>& poses) {
+  std::ostringstream os;
+  os << "utime,x,y,theta\n" << std::setprecision(10);
+  for (const auto& p : poses) os << p.utime << "," << p.pose.x << "," << p.pose.y << "," << p.pose.theta << "\n";
+  return os.str();
+}
+
+void SavePosesCsv(const std::string& path, const std::vector<StampedPose>& poses) {
+  WriteFileAtomically(path, PosesToCsv(poses));
+}
+
+std::vector<Station> ParseStationsCsv(const std::string& text, const std::string& source_name) {
+  std::vector<Station> out;
+  ForEachCsvRow(text, source_name, {{"x", "y", "theta"}, {"x", "y", "theta", "world"}},
+                [&](const std::vector<std::string>& f, const std::string& where) {
+                  Station s;
+                  s.pose = Pose2(ParseDouble(f[0], where), ParseDouble(f[1], where), ParseDouble(f[2], where));
+                  if (f.size() > 3) {
+                    const int64_t w = ParseInt64(f[3], where);
+                    if (w < 0 || w > 1000000) throw InputError(where + ": world index " + f[3] + " out of range");
+                    s.world = static_cast<int>(w);
+                  }
+                  out.push_back(s);
+                });
+  return out;
+}
+
+std::vector<Station> LoadStationsCsv(const std::string& path) { return ParseStationsCsv(ReadFile(path), path); }
+
+std::string StationsToCsv(const std::vector<Station>& stations) {
+  bool any_world = false;
+  for (const auto& s : stations) any_world = any_world || s.world != 0;
+  std::ostringstream os;
+  os << (any_world ? "x,y,theta,world\n" : "x,y,theta\n") << std::setprecision(10);
+  for (const auto& s : stations) {
+    os << s.pose.x << "," << s.pose.y << "," << s.pose.theta;
+    if (any_world) os << "," << s.world;
+    os << "\n";
+  }
+  return os.str();
+}
+
+void SaveStationsCsv(const std::string& path, const std::vector<Station>& stations) {
+  WriteFileAtomically(path, StationsToCsv(stations));
+}
+
+}  // namespace minenav

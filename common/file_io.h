@@ -1,0 +1,54 @@
+#pragma once
+// File contracts of DESIGN.md ("File contracts"): segment maps (JSON), poses and scan
+// stations (CSV). Readers validate everything and throw InputError with a one-line
+// message naming file, line and what was wrong. Writers write to a temporary file and
+// rename it, so a failed run never leaves a partial file that looks complete.
+
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "common/geometry.h"
+#include "common/pose2.h"
+
+namespace minenav {
+
+// Bad input from outside (file, flag, message): the message is one line for the user.
+class InputError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+std::string ReadFile(const std::string& path);
+// Writes `content` to path.tmp.<pid> and renames it onto `path`.
+void WriteFileAtomically(const std::string& path, const std::string& content);
+
+// {"segments": [[x1, y1, x2, y2], ...]} in metres; other keys are allowed and ignored.
+std::vector<Segment> ParseSegmentsJson(const std::string& text, const std::string& source_name);
+std::vector<Segment> LoadSegmentsJson(const std::string& path);
+std::string SegmentsToJson(const std::vector<Segment>& segments);
+void SaveSegmentsJson(const std::string& path, const std::vector<Segment>& segments);
+
+// Poses CSV, header utime,x,y,theta: one row per scan, theta in radians.
+struct StampedPose {
+  int64_t utime = 0;
+  Pose2 pose;
+};
+std::vector<StampedPose> ParsePosesCsv(const std::string& text, const std::string& source_name);
+std::vector<StampedPose> LoadPosesCsv(const std::string& path);
+std::string PosesToCsv(const std::vector<StampedPose>& poses);
+void SavePosesCsv(const std::string& path, const std::vector<StampedPose>& poses);
+
+// Scan stations CSV, header x,y,theta with an optional fourth column `world` (index into
+// a list of worlds, default 0).
+struct Station {
+  Pose2 pose;
+  int world = 0;
+};
+std::vector<Station> ParseStationsCsv(const std::string& text, const std::string& source_name);
+std::vector<Station> LoadStationsCsv(const std::string& path);
+std::string StationsToCsv(const std::vector<Station>& stations);
+void SaveStationsCsv(const std::string& path, const std::vector<Station>& stations);
+
+}  // namespace minenav

@@ -1,0 +1,79 @@
+#include "common/file_io.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+
+namespace minenav {
+namespace {
+
+TEST(FileIoTest, SegmentsRoundTrip) {
+  const std::vector<Segment> segs = {{0, 0, 1, 2.5}, {-3.25, 4, 7, 1e-3}};
+  const auto back = ParseSegmentsJson(SegmentsToJson(segs), "mem");
+  ASSERT_EQ(back.size(), 2u);
+  EXPECT_TRUE(back[1].a.isApprox(segs[1].a));
+  EXPECT_TRUE(back[1].b.isApprox(segs[1].b));
+}
+
+TEST(FileIoTest, SegmentsAllowOtherKeys) {
+  const auto s = ParseSegmentsJson(R"({"name": "mine", "segments": [[1,2,3,4]], "seed": 7})", "mem");
+  ASSERT_EQ(s.size(), 1u);
+}
+
+TEST(FileIoTest, MalformedSegmentsAreNamed) {
+  auto message = [](const std::string& text) {
+    try {
+      ParseSegmentsJson(text, "w.json");
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_NE(message("{").find("not valid JSON"), std::string::npos);
+  EXPECT_NE(message("[]").find("\"segments\""), std::string::npos);
+  EXPECT_NE(message(R"({"segments": [[1,2,3]]})").find("segments[0]"), std::string::npos);
+  EXPECT_NE(message(R"({"segments": [[1,2,3,4],[1,"a",3,4]]})").find("segments[1]"), std::string::npos);
+}
+
+TEST(FileIoTest, PosesCsvRoundTripAndErrors) {
+  const std::vector<StampedPose> poses = {{100, {1, 2, 0.5}}, {200, {-1, 3.25, -3.0}}};
+  const auto back = ParsePosesCsv(PosesToCsv(poses), "mem");
+  ASSERT_EQ(back.size(), 2u);
+  EXPECT_EQ(back[1].utime, 200);
+  EXPECT_DOUBLE_EQ(back[1].pose.y, 3.25);
+  EXPECT_THROW(ParsePosesCsv("t,x,y,theta\n1,2,3,4\n", "p.csv"), InputError);
+  try {
+    ParsePosesCsv("utime,x,y,theta\n1,2,3,4\n2,2,x,4\n", "p.csv");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("p.csv:3"), std::string::npos) << e.what();
+  }
+}
+
+TEST(FileIoTest, StationsWithOptionalWorldColumn) {
+  auto st = ParseStationsCsv("x,y,theta\n1,2,0.1\n3,4,0.2\n", "s.csv");
+  ASSERT_EQ(st.size(), 2u);
+  EXPECT_EQ(st[1].world, 0);
+  st = ParseStationsCsv("x,y,theta,world\n1,2,0.1,0\n3,4,0.2,1\n", "s.csv");
+  EXPECT_EQ(st[1].world, 1);
+  EXPECT_THROW(ParseStationsCsv("x,y,theta,world\n1,2,0.1,-1\n", "s.csv"), InputError);
+  EXPECT_THROW(ParseStationsCsv("x,y,theta\n1,2\n", "s.csv"), InputError);
+  EXPECT_THROW(ParseStationsCsv("", "s.csv"), InputError);
+}
+
+TEST(FileIoTest, AtomicWriteLeavesNoTemporary) {
+  const auto dir = std::filesystem::temp_directory_path() / "minenav_fileio_test";
+  std::filesystem::create_directories(dir);
+  const std::string path = (dir / "out.json").string();
+  SaveSegmentsJson(path, {{0, 0, 1, 1}});
+  EXPECT_EQ(LoadSegmentsJson(path).size(), 1u);
+  int files = 0;
+  for (const auto& e : std::filesystem::directory_iterator(dir)) files += e.is_regular_file();
+  EXPECT_EQ(files, 1);
+  EXPECT_THROW(SaveSegmentsJson((dir / "missing" / "x.json").string(), {}), InputError);
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace minenav
