@@ -1,0 +1,67 @@
+#pragma once
+// Free functions between LCM messages (minenav::*_t) and the plain types algorithms use.
+// FromLcm validates what it can (sizes, finiteness) and throws InputError naming the
+// field, so nodes can reject a bad message in one line and go on.
+
+#include <string>
+#include <vector>
+
+#include "common/geometry.h"
+#include "common/pose_estimate.h"
+#include "common/scan.h"
+#include "common/vehicle_state.h"
+#include "minenav/drive_command_t.hpp"
+#include "minenav/ladar_scan_t.hpp"
+#include "minenav/line_map_t.hpp"
+#include "minenav/odometry_t.hpp"
+#include "minenav/pose2d_t.hpp"
+#include "minenav/pose_estimate_t.hpp"
+#include "minenav/vehicle_truth_t.hpp"
+
+namespace minenav {
+
+pose2d_t ToLcm(const Pose2& p);
+Pose2 FromLcm(const pose2d_t& m);
+
+ladar_scan_t ToLcm(const LadarScan& s);
+LadarScan FromLcm(const ladar_scan_t& m);
+
+odometry_t ToLcm(const OdometryReading& o);
+OdometryReading FromLcm(const odometry_t& m);
+
+vehicle_truth_t ToLcm(const TruthReading& t);
+TruthReading FromLcm(const vehicle_truth_t& m);
+
+drive_command_t ToLcm(const DriveCommand& c);
+DriveCommand FromLcm(const drive_command_t& m);
+
+pose_estimate_t ToLcm(const PoseEstimate& e);
+PoseEstimate FromLcm(const pose_estimate_t& m);
+
+line_map_t SegmentsToLcm(const std::vector<Segment>& segments, int64_t utime, int64_t version,
+                         const std::string& name);
+std::vector<Segment> SegmentsFromLcm(const line_map_t& m);
+
+// Decodes a raw LCM payload into T. Returns false and sets *error (one line naming the
+// channel and the reason: wrong fingerprint, truncated) when it does not decode.
+template <typename T>
+bool DecodeMessage(const void* data, int size, const std::string& channel, T* out, std::string* error) {
+  *out = T{};
+  const int used = out->decode(data, 0, size);
+  if (used < 0) {
+    *error = "channel " + channel + ": cannot decode " + std::to_string(size) + " bytes as " +
+             T::getTypeName() + " (wrong type/fingerprint or truncated)";
+    return false;
+  }
+  return true;
+}
+
+// Encodes any LCM message into bytes.
+template <typename T>
+std::vector<uint8_t> EncodeMessage(const T& msg) {
+  std::vector<uint8_t> buf(static_cast<size_t>(msg.getEncodedSize()));
+  msg.encode(buf.data(), 0, static_cast<int>(buf.size()));
+  return buf;
+}
+
+}  // namespace minenav

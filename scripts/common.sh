@@ -1,0 +1,30 @@
+# Shared by the two README commands: install what is missing, configure, build.
+# Source it; do not run it.
+set -euo pipefail
+
+MINENAV_ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+MINENAV_JOBS="${MINENAV_JOBS:-$(nproc)}"
+
+# Debian packages the project needs; installed with apt-get only when missing.
+MINENAV_PACKAGES=(build-essential cmake liblcm-dev liblcm-bin libeigen3-dev libgtest-dev
+                  libgmock-dev zlib1g-dev nlohmann-json3-dev iproute2 util-linux python3)
+
+minenav_install_deps() {
+  local missing=()
+  for p in "${MINENAV_PACKAGES[@]}"; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+  done
+  if [ ${#missing[@]} -eq 0 ]; then return 0; fi
+  echo "== installing missing Debian packages: ${missing[*]}"
+  local sudo=""
+  [ "$(id -u)" -eq 0 ] || sudo="sudo"
+  $sudo apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+}
+
+# minenav_build DIR [cmake args...]
+minenav_build() {
+  local dir="$1"; shift
+  cmake -S "$MINENAV_ROOT" -B "$dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo "$@" >/dev/null
+  cmake --build "$dir" -j "$MINENAV_JOBS"
+}
