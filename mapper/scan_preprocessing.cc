@@ -1,0 +1,135 @@
+#include "mapper/scan_preprocessing.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "common/angle.h"
+
+namespace minenav::mapper {
+
+std::string ValidateOptions(const ScanPreprocessingOptions& o) {
+  std::ostringstream why;
+  if (!(o.min_range >= 0.0) || !(o.max_range >= 0.0))
+    why << "min_range/max_range must be >= 0 (0 = the scan's own limit)";
+  else if (o.max_range > 0.0 && o.min_range >= o.max_range)
+    why << "min_range " << o.min_range << " m must be below max_range " << o.max_range << " m";
+  else if (o.median_filter_size < 1 || o.median_filter_size % 2 == 0)
+    why << "median_filter_size must be odd and >= 1, got " << o.median_filter_size;
+  else if (!(o.discontinuity_threshold > 0.0))
+    why << "discontinuity_threshold must be > 0 m, got " << o.discontinuity_threshold;
+  else if (o.min_points_per_partial_scan < 2)
+    why << "min_points_per_partial_scan must be >= 2, got " << o.min_points_per_partial_scan;
+  else if (!(o.min_point_spacing >= 0.0))
+    why << "min_point_spacing must be >= 0 m, got " << o.min_point_spacing;
+  return why.str();
+}
+
+int PreprocessedScan::NumPoints() const {
+  int n = 0;
+  for (const PartialScan& p : partial_scans) n += static_cast<int>(p.points.size());
+  return n;
+}
+
+std::vector<float> MedianFilterRanges(const std::vector<float>& ranges, const std::vector<bool>& valid,
+                                      int size) {
+  if (size <= 1) return ranges;
+  const int n = static_cast<int>(ranges.size());
+  const int half = size / 2;
+  std::vector<float> out = ranges;
+  std::vector<float> window;
+  window.reserve(static_cast<size_t>(size));
+  for (int i = 0; i < n; ++i) {
+    if (!valid[static_cast<size_t>(i)]) continue;
+    window.clear();
+    for (int k = std::max(0, i - half); k <= std::min(n - 1, i + half); ++k)
+      if (valid[static_cast<size_t>(k)]) window.push_back(ranges[static_cast<size_t>(k)]);
+    const auto mid = window.begin() + static_cast<std::ptrdiff_t>(window.size() / 2);
+    std::nth_element(window.begin(), mid, window.end());
+    out[static_cast<size_t>(i)] = *mid;
+  }
+  return out;
+}
+
+std::vector<Eigen::Vector2d> ReduceDensity(const std::vector<Eigen::Vector2d>& points, double min_spacing) {
+  if (min_spacing <= 0.0 || points.size() <= 2) return points;
+  std::vector<Eigen::Vector2d> out;
+  out.push_back(points.front());
+  for (size_t i = 1; i + 1 < points.size(); ++i)
+    if ((points[i] - out.back()).norm() >= min_spacing) out.push_back(points[i]);
+  // The last point always stays; drop the previous kept one if it crowds it.
+  if (out.size() > 1 && (points.back() - out.back()).norm() < 0.5 * min_spacing) out.pop_back();
+  out.push_back(points.back());
+  return out;
+}
+
+PreprocessedScan PreprocessScan(const LadarScan& scan, const ScanPreprocessingOptions& options) {
+  PreprocessedScan out;
+  out.utime = scan.utime;
+  out.sensor_position = scan.sensor_offset.translation();
+  const size_t n = scan.ranges.size();
+  if (n == 0) return out;
+
+  const double lo = std::max(scan.min_range, options.min_range);
+  const double hi = options.max_range > 0.0 ? std::min(scan.max_range, options.max_range) : scan.max_range;
+  std::vector<bool> valid(n);
+  for (size_t i = 0; i < n; ++i) {
+    const float r = scan.ranges[i];
+    valid[i] = std::isfinite(r) && r > 0.0f && r >= lo && r <= hi;
+  }
+  const std::vector<float> ranges = MedianFilterRanges(scan.ranges, valid, options.median_filter_size);
+
+  // Points in the vehicle frame, in reading order; runs split at invalid readings and jumps.
+  std::vector<Eigen::Vector2d> pts(n);
+  for (size_t i = 0; i < n; ++i) {
+    if (!valid[i]) continue;
+    const double r = ranges[i], a = scan.Bearing(i);
+    pts[i] = scan.sensor_offset * Eigen::Vector2d(r * std::cos(a), r * std::sin(a));
+  }
+  struct Run {
+    std::vector<Eigen::Vector2d> points;
+    int first = 0, last = 0;
+  };
+  std::vector<Run> runs;
+  bool open = false;
+  for (size_t i = 0; i < n; ++i) {
+    if (!valid[i]) {
+      open = false;
+      continue;
+    }
+    if (open && (pts[i] - runs.back().points.back()).norm() <= options.discontinuity_threshold) {
+      runs.back().points.push_back(pts[i]);
+      runs.back().last = static_cast<int>(i);
+    } else {
+      runs.push_back({{pts[i]}, static_cast<int>(i), static_cast<int>(i)});
+      open = true;
+    }
+  }
+  // A full turn: the last run continues into the first across the seam.
+  const double coverage = std::abs(scan.angle_step) * static_cast<double>(n);
+  if (runs.size() >= 2 && coverage >= 2.0 * kPi - 1.5 * std::abs(scan.angle_step) && valid[0] &&
+      valid[n - 1] && runs.front().first == 0 && runs.back().last == static_cast<int>(n - 1) &&
+      (pts[0] - pts[n - 1]).norm() <= options.discontinuity_threshold) {
+    Run merged = std::move(runs.back());
+    runs.pop_back();
+    merged.points.insert(merged.points.end(), runs.front().points.begin(), runs.front().points.end());
+    merged.last = runs.front().last;
+    runs.front() = std::move(merged);
+  }
+  for (Run& run : runs) {
+    if (static_cast<int>(run.points.size()) < options.min_points_per_partial_scan) continue;
+    PartialScan partial;
+    partial.first_index = run.first;
+    partial.last_index = run.last;
+    partial.points = std::move(run.points);
+    if (scan.angle_step < 0.0) {  // keep counter-clockwise order about the sensor
+      std::reverse(partial.points.begin(), partial.points.end());
+      std::swap(partial.first_index, partial.last_index);
+    }
+    partial.points = ReduceDensity(partial.points, options.min_point_spacing);
+    out.partial_scans.push_back(std::move(partial));
+  }
+  return out;
+}
+
+}  // namespace minenav::mapper

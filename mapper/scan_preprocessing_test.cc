@@ -1,0 +1,107 @@
+#include "mapper/scan_preprocessing.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "mapper/test_world.h"
+
+namespace minenav::mapper {
+namespace {
+
+using testing::MakeScan;
+using testing::Rectangle;
+
+TEST(ScanPreprocessingTest, OptionsAreValidated) {
+  ScanPreprocessingOptions o;
+  EXPECT_EQ(ValidateOptions(o), "");
+  o.median_filter_size = 4;
+  EXPECT_NE(ValidateOptions(o), "");
+  o = {};
+  o.min_range = 5;
+  o.max_range = 4;
+  EXPECT_NE(ValidateOptions(o), "");
+  o = {};
+  o.discontinuity_threshold = 0;
+  EXPECT_NE(ValidateOptions(o), "");
+}
+
+TEST(ScanPreprocessingTest, MedianFilterRemovesAnOutlierAndKeepsInvalid) {
+  std::vector<float> r = {5, 5, 5, 9, 5, 5, std::nanf(""), 5};
+  std::vector<bool> v = {true, true, true, true, true, true, false, true};
+  const auto f = MedianFilterRanges(r, v, 3);
+  EXPECT_FLOAT_EQ(f[3], 5.0f);
+  EXPECT_TRUE(std::isnan(f[6]));
+  EXPECT_EQ(MedianFilterRanges(r, v, 1)[3], 9.0f);
+}
+
+TEST(ScanPreprocessingTest, ClosedRoomIsOnePartialScanAcrossTheSeam) {
+  const auto world = Rectangle(-5, -4, 6, 3);
+  const LadarScan scan = MakeScan(world, Pose2(0, 0, 0.3));
+  const PreprocessedScan p = PreprocessScan(scan, {});
+  ASSERT_EQ(p.partial_scans.size(), 1u);
+  EXPECT_EQ(p.NumPoints(), 720);
+  // Counter-clockwise about the sensor: the sensor is on the left of every step.
+  const auto& pts = p.partial_scans[0].points;
+  for (size_t i = 1; i < pts.size(); ++i) {
+    const Eigen::Vector2d d = pts[i] - pts[i - 1];
+    const Eigen::Vector2d to_sensor = -pts[i - 1];
+    EXPECT_GE(d.x() * to_sensor.y() - d.y() * to_sensor.x(), -1e-9) << i;
+  }
+}
+
+TEST(ScanPreprocessingTest, ClockwiseScansAreReversedToCounterClockwise) {
+  const auto world = Rectangle(-5, -4, 6, 3);
+  testing::ScanSpec spec;
+  spec.clockwise = true;
+  const PreprocessedScan p = PreprocessScan(MakeScan(world, Pose2(0.5, 0.2, -1.0), spec), {});
+  ASSERT_EQ(p.partial_scans.size(), 1u);
+  const auto& pts = p.partial_scans[0].points;
+  const Eigen::Vector2d sensor(0, 0);
+  int left = 0;
+  for (size_t i = 1; i < pts.size(); ++i) {
+    const Eigen::Vector2d d = pts[i] - pts[i - 1];
+    const Eigen::Vector2d s = sensor - pts[i - 1];
+    if (d.x() * s.y() - d.y() * s.x() > 0) ++left;
+  }
+  EXPECT_GT(left, static_cast<int>(pts.size()) - 5);
+}
+
+TEST(ScanPreprocessingTest, OcclusionSplitsPartialScansAndTrimDropsFarWalls) {
+  // A pillar in a room: its faces are separate partial scans from the room walls.
+  auto world = Rectangle(-10, -10, 10, 10);
+  world = testing::Concat(world, Rectangle(3, -1, 5, 1));
+  const LadarScan scan = MakeScan(world, Pose2(0, 0, 0));
+  const PreprocessedScan p = PreprocessScan(scan, {});
+  ASSERT_EQ(p.partial_scans.size(), 2u);  // the pillar face, and the wall with its shadow cut out
+  // Trimming to 4 m keeps only the pillar face (x = 3).
+  ScanPreprocessingOptions o;
+  o.max_range = 4.0;
+  const PreprocessedScan t = PreprocessScan(scan, o);
+  ASSERT_EQ(t.partial_scans.size(), 1u);
+  for (const auto& q : t.partial_scans[0].points) EXPECT_NEAR(q.x(), 3.0, 1e-6);
+}
+
+TEST(ScanPreprocessingTest, DensityReductionKeepsSpacingAndEnds) {
+  std::vector<Eigen::Vector2d> line;
+  for (int i = 0; i <= 100; ++i) line.emplace_back(0.01 * i, 0.0);
+  const auto r = ReduceDensity(line, 0.099);  // every 10th point
+  EXPECT_EQ(r.front(), line.front());
+  EXPECT_EQ(r.back(), line.back());
+  EXPECT_EQ(r.size(), 11u);
+  for (size_t i = 1; i < r.size(); ++i) EXPECT_GE((r[i] - r[i - 1]).norm(), 0.05 - 1e-12);
+}
+
+TEST(ScanPreprocessingTest, SensorOffsetMovesPointsIntoTheVehicleFrame) {
+  const auto world = Rectangle(-5, -4, 6, 3);
+  LadarScan scan = MakeScan(world, Pose2(0, 0, 0));
+  scan.sensor_offset = Pose2(1.0, 0.0, 0.0);  // reported ranges are from x = 1 in the vehicle
+  const PreprocessedScan p = PreprocessScan(scan, {});
+  EXPECT_EQ(p.sensor_position, Eigen::Vector2d(1.0, 0.0));
+  double max_x = -1e9;
+  for (const auto& q : p.partial_scans[0].points) max_x = std::max(max_x, q.x());
+  EXPECT_NEAR(max_x, 7.0, 1e-3);
+}
+
+}  // namespace
+}  // namespace minenav::mapper

@@ -1,0 +1,63 @@
+#pragma once
+// Test helpers (tests and benches only): tiny inline worlds and exact ray-cast scans from
+// common/geometry.h CastRay, with optional Gaussian range noise.
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "common/angle.h"
+#include "common/geometry.h"
+#include "common/scan.h"
+
+namespace minenav::mapper::testing {
+
+struct ScanSpec {
+  int num_points = 720;
+  double min_range = 0.5;      // m
+  double max_range = 40.0;     // m
+  double range_sigma = 0.0;    // m
+  unsigned seed = 1;
+  bool clockwise = false;      // negative angle_step
+};
+
+// A scan taken by a vehicle at world_T_vehicle (sensor at the vehicle origin).
+inline LadarScan MakeScan(const std::vector<Segment>& world, const Pose2& world_T_vehicle,
+                          const ScanSpec& spec = {}) {
+  LadarScan scan;
+  scan.min_range = spec.min_range;
+  scan.max_range = spec.max_range;
+  scan.angle_step = (spec.clockwise ? -1.0 : 1.0) * 2.0 * kPi / spec.num_points;
+  scan.start_angle = spec.clockwise ? kPi : -kPi;
+  std::mt19937 rng(spec.seed);
+  std::normal_distribution<double> noise(0.0, spec.range_sigma > 0.0 ? spec.range_sigma : 1.0);
+  scan.ranges.resize(static_cast<size_t>(spec.num_points));
+  for (int i = 0; i < spec.num_points; ++i) {
+    const double bearing = world_T_vehicle.theta + scan.Bearing(static_cast<size_t>(i));
+    const auto hit = CastRay(world_T_vehicle.translation(), bearing, world, spec.max_range);
+    double r = hit ? hit->range : std::nan("");
+    if (hit && spec.range_sigma > 0.0) r += noise(rng);
+    scan.ranges[static_cast<size_t>(i)] = static_cast<float>(r);
+  }
+  return scan;
+}
+
+// Axis-aligned rectangle as four segments, counter-clockwise (interior on the left).
+inline std::vector<Segment> Rectangle(double x0, double y0, double x1, double y1) {
+  return {Segment(x0, y0, x1, y0), Segment(x1, y0, x1, y1), Segment(x1, y1, x0, y1), Segment(x0, y1, x0, y0)};
+}
+
+inline std::vector<Segment> Concat(std::vector<Segment> a, const std::vector<Segment>& b) {
+  a.insert(a.end(), b.begin(), b.end());
+  return a;
+}
+
+// A 20 x 12 m room with two pillars: asymmetric enough that poses are well constrained.
+inline std::vector<Segment> SmallRoomWorld() {
+  std::vector<Segment> w = Rectangle(0, 0, 20, 12);
+  w = Concat(w, Rectangle(5, 4, 7, 7));
+  w = Concat(w, Rectangle(12, 3, 15, 5));
+  return w;
+}
+
+}  // namespace minenav::mapper::testing
