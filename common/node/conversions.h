@@ -3,6 +3,7 @@
 // FromLcm validates what it can (sizes, finiteness) and throws InputError naming the
 // field, so nodes can reject a bad message in one line and go on.
 
+#include <exception>
 #include <string>
 #include <vector>
 
@@ -47,7 +48,14 @@ std::vector<Segment> SegmentsFromLcm(const line_map_t& m);
 template <typename T>
 bool DecodeMessage(const void* data, int size, const std::string& channel, T* out, std::string* error) {
   *out = T{};
-  const int used = out->decode(data, 0, size);
+  int used = -1;
+  // Generated decoders size arrays from the count in the payload before checking it:
+  // a corrupt negative count throws std::length_error, which must not escape.
+  try {
+    used = out->decode(data, 0, size);
+  } catch (const std::exception&) {
+    used = -1;
+  }
   if (used < 0) {
     *error = "channel " + channel + ": cannot decode " + std::to_string(size) + " bytes as " +
              T::getTypeName() + " (wrong type/fingerprint or truncated)";

@@ -1,0 +1,293 @@
+#include "common/node/node_runtime.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "common/file_io.h"
+#include "common/log.h"
+#include "common/node/lcm_bus.h"
+#include "common/node/log_bus.h"
+#include "minenav/heartbeat_t.hpp"
+
+namespace minenav {
+
+namespace {
+
+volatile std::sig_atomic_t g_stop_signal = 0;
+
+extern "C" void OnStopSignal(int /*signal*/) { g_stop_signal = 1; }
+
+// Longest a live loop waits before looking at the stop flag again.
+constexpr int64_t kMaxWaitUs = 100'000;
+// In batch, a gap in the log longer than this many periods skips ahead instead of
+// firing every missed period (a log spanning a day must not call a 10 Hz timer a
+// million times between two events).
+constexpr int64_t kMaxCatchUpPeriods = 100'000;
+
+int64_t SecondsToUs(double s) { return static_cast<int64_t>(std::llround(s * 1e6)); }
+
+}  // namespace
+
+NodeRuntime::NodeRuntime(std::string process, ConfigSchema& schema)
+    : process_(std::move(process)), state_(heartbeat_t::OK) {
+  Register(schema);
+}
+
+NodeRuntime::NodeRuntime(std::string process, NodeOptions options)
+    : process_(std::move(process)), options_(std::move(options)), state_(heartbeat_t::OK) {}
+
+NodeRuntime::~NodeRuntime() = default;
+
+void NodeRuntime::Register(ConfigSchema& schema) {
+  schema.AddString("lcm_url", &options_.lcm_url,
+                   "LCM URL; empty = $LCM_DEFAULT_URL, else " + std::string(kDefaultLcmUrl));
+  schema.AddString("log", &options_.log,
+                   "batch mode: read this LCM log instead of the bus, as fast as possible");
+  schema.AddString("log_out", &options_.log_out, "batch mode: write publications to this LCM log");
+  schema.AddDouble("heartbeat_period", &options_.heartbeat_period, "s",
+                   "time between HEARTBEAT messages; 0 = none", 0.0, 3600.0);
+  schema.AddString("log_level", &options_.log_level, "least severe message printed on stderr",
+                   {"debug", "info", "warn", "error"});
+  schema.AddInt("queue_capacity", &options_.queue_capacity,
+                "messages each subscription buffers before LCM drops (live)", 1, 1'000'000);
+  schema.AddDouble("run_for", &options_.run_for, "s",
+                   "stop after this much clock time; 0 = until SIGINT/SIGTERM or end of log", 0.0,
+                   1e9);
+  schema.AddString("instance", &options_.instance, "instance name in HEARTBEAT (several copies)");
+  schema.AddChannel("heartbeat_channel", &options_.heartbeat_channel, "publishes", "heartbeat_t",
+                    "liveness, message counts and state");
+}
+
+void NodeRuntime::ApplyLogSettings() {
+  SetLogProgramName(options_.instance.empty() ? process_ : process_ + ":" + options_.instance);
+  try {
+    SetLogLevel(ParseLogLevel(options_.log_level));
+  } catch (const InputError& e) {
+    throw UsageError(std::string("--log-level: ") + e.what());
+  }
+}
+
+void NodeRuntime::Start() {
+  if (bus_ != nullptr) throw std::logic_error("NodeRuntime::Start called twice");
+  ApplyLogSettings();
+  if (!options_.log_out.empty() && options_.log.empty())
+    throw UsageError("--log-out is for batch mode: it needs --log");
+  if (!options_.log.empty() && !options_.log_out.empty() && options_.log == options_.log_out)
+    throw UsageError("--log-out must differ from --log");
+  if (options_.heartbeat_period < 0 || !std::isfinite(options_.heartbeat_period))
+    throw UsageError("--heartbeat-period must be >= 0");
+  if (!options_.log.empty()) {
+    auto log_bus = std::make_unique<LogBus>(options_.log, batch_clock_);
+    if (!options_.log_out.empty()) log_bus->SetOutputLog(options_.log_out);
+    log_bus_ = log_bus.get();
+    clock_ = &batch_clock_;
+    bus_ = std::move(log_bus);
+    MINENAV_LOG(kInfo) << "batch over " << options_.log
+                       << (options_.log_out.empty() ? "" : ", writing " + options_.log_out);
+  } else {
+    const std::string url = ResolveLcmUrl(options_.lcm_url);
+    bus_ = std::make_unique<LcmBus>(url, options_.queue_capacity);
+    MINENAV_LOG(kDebug) << "LCM on " << url;
+  }
+  if (options_.heartbeat_period > 0) {
+    AddTimer(options_.heartbeat_period, [this](int64_t) { PublishHeartbeat(state_); });
+  }
+}
+
+void NodeRuntime::StartWith(std::unique_ptr<Bus> bus, Clock& clock) {
+  if (bus_ != nullptr) throw std::logic_error("NodeRuntime::StartWith called twice");
+  ApplyLogSettings();
+  bus_ = std::move(bus);
+  clock_ = &clock;
+  if (options_.heartbeat_period > 0) {
+    AddTimer(options_.heartbeat_period, [this](int64_t) { PublishHeartbeat(state_); });
+  }
+}
+
+Bus& NodeRuntime::bus() {
+  if (bus_ == nullptr) throw std::logic_error("NodeRuntime::bus() before Start()");
+  return *bus_;
+}
+
+int NodeRuntime::AddTimer(double period_s, TimerCallback callback) {
+  if (!(period_s > 0) || !std::isfinite(period_s))
+    throw UsageError("timer period must be > 0 s, got " + std::to_string(period_s));
+  Timer t;
+  t.period_us = std::max<int64_t>(1, SecondsToUs(period_s));
+  t.callback = std::move(callback);
+  if (started_) {
+    t.next_due = clock_->NowUtime();
+    t.scheduled = true;
+  }
+  timers_.push_back(std::move(t));
+  return static_cast<int>(timers_.size()) - 1;
+}
+
+void NodeRuntime::SetStatus(int8_t state, std::string message) {
+  state_ = state;
+  status_message_ = std::move(message);
+}
+
+void NodeRuntime::OnShutdown(std::function<void()> hook) { shutdown_hooks_.push_back(std::move(hook)); }
+
+bool NodeRuntime::StopRequested() const { return stop_requested_ || g_stop_signal != 0; }
+
+void NodeRuntime::InstallSignalHandlers() {
+  struct sigaction action {};
+  action.sa_handler = &OnStopSignal;
+  sigemptyset(&action.sa_mask);
+  action.sa_flags = 0;  // no SA_RESTART: a blocking wait returns so the loop can stop
+  sigaction(SIGINT, &action, nullptr);
+  sigaction(SIGTERM, &action, nullptr);
+}
+
+void NodeRuntime::PublishHeartbeat(int8_t state) {
+  if (bus_ == nullptr) return;
+  heartbeat_t hb{};
+  hb.utime = clock_->NowUtime();
+  hb.seq = heartbeat_seq_++;
+  hb.process = process_;
+  hb.instance = options_.instance;
+  hb.pid = static_cast<int32_t>(::getpid());
+  hb.state = state;
+  hb.message = status_message_;
+  hb.messages_in = bus_->counters().messages_in;
+  hb.messages_bad = bus_->counters().messages_bad;
+  Publish(*bus_, options_.heartbeat_channel, hb);
+}
+
+void NodeRuntime::BeginClock(int64_t utime) {
+  if (started_) return;
+  started_ = true;
+  start_utime_ = utime;
+  for (Timer& t : timers_) {
+    if (!t.scheduled) {
+      t.next_due = utime;
+      t.scheduled = true;
+    }
+  }
+}
+
+int64_t NodeRuntime::NextTimerDue() const {
+  int64_t due = std::numeric_limits<int64_t>::max();
+  for (const Timer& t : timers_)
+    if (t.scheduled) due = std::min(due, t.next_due);
+  return due;
+}
+
+void NodeRuntime::FireDueTimers(int64_t now) {
+  while (!StopRequested()) {
+    // The earliest due timer first; ties go to the one added first (deterministic).
+    Timer* next = nullptr;
+    for (Timer& t : timers_)
+      if (t.scheduled && t.next_due <= now && (next == nullptr || t.next_due < next->next_due)) next = &t;
+    if (next == nullptr) return;
+    if (batch()) {
+      if (now - next->next_due > kMaxCatchUpPeriods * next->period_us) {
+        const int64_t skipped = (now - next->next_due) / next->period_us;
+        next->next_due += skipped * next->period_us;
+        MINENAV_LOG(kWarn) << "log gap: a timer skipped " << skipped << " periods";
+      }
+      const int64_t due = next->next_due;
+      batch_clock_.Set(std::max(batch_clock_.NowUtime(), due));
+      next->next_due += next->period_us;
+      next->callback(due);
+    } else {
+      next->next_due += next->period_us;
+      // Fell behind (slow handler, suspended process): skip the missed periods.
+      if (next->next_due <= now) next->next_due = now + next->period_us;
+      next->callback(now);
+    }
+  }
+}
+
+int NodeRuntime::SpinOnce(int64_t max_wait_us) {
+  Bus& b = bus();
+  if (!started_) BeginClock(clock_->NowUtime());
+  FireDueTimers(clock_->NowUtime());
+  if (StopRequested()) return 0;
+  int64_t wait = std::max<int64_t>(0, max_wait_us);
+  const int64_t due = NextTimerDue();
+  if (due != std::numeric_limits<int64_t>::max())
+    wait = std::clamp<int64_t>(due - clock_->NowUtime(), 0, wait);
+  return b.HandleFor(wait);
+}
+
+int NodeRuntime::RunLive() {
+  while (!StopRequested()) {
+    if (started_ && options_.run_for > 0 &&
+        clock_->NowUtime() - start_utime_ >= SecondsToUs(options_.run_for))
+      break;
+    SpinOnce(kMaxWaitUs);
+  }
+  return 0;
+}
+
+int NodeRuntime::RunBatch() {
+  const int64_t run_for_us = SecondsToUs(options_.run_for);
+  while (!StopRequested()) {
+    const std::optional<int64_t> ts = log_bus_->PeekTimestamp();
+    if (!ts) break;
+    const int64_t t = std::max(batch_clock_.NowUtime(), *ts);
+    if (!started_) {
+      batch_clock_.Set(t);
+      BeginClock(t);
+    }
+    if (run_for_us > 0 && t - start_utime_ > run_for_us) break;
+    FireDueTimers(t);
+    batch_clock_.Set(t);
+    log_bus_->DispatchNext();
+  }
+  MINENAV_LOG(kInfo) << "batch done: " << log_bus_->events_dispatched() << " events, "
+                     << bus_->counters().messages_in << " handled, " << bus_->counters().messages_bad
+                     << " bad";
+  return 0;
+}
+
+int NodeRuntime::Run() {
+  bus();  // throws if not started
+  InstallSignalHandlers();
+  try {
+    const int code = batch() ? RunBatch() : RunLive();
+    Shutdown();
+    return code;
+  } catch (const std::exception& e) {
+    status_message_ = e.what();
+    try {
+      PublishHeartbeat(heartbeat_t::ERROR);
+    } catch (...) {
+    }
+    throw;
+  }
+}
+
+void NodeRuntime::Shutdown() {
+  if (shut_down_ || bus_ == nullptr) return;
+  shut_down_ = true;
+  for (auto& hook : shutdown_hooks_) hook();
+  if (options_.heartbeat_period > 0) PublishHeartbeat(heartbeat_t::STOPPING);
+  if (log_bus_ != nullptr) log_bus_->Close();
+}
+
+int RunNodeMain(const std::string& process, const std::function<int()>& body) {
+  SetLogProgramName(process);
+  try {
+    return body();
+  } catch (const UsageError& e) {
+    MINENAV_LOG(kError) << e.what();
+    return kExitUsage;
+  } catch (const InputError& e) {
+    MINENAV_LOG(kError) << e.what();
+    return kExitUsage;
+  } catch (const std::exception& e) {
+    MINENAV_LOG(kError) << e.what();
+    return kExitRuntime;
+  }
+}
+
+}  // namespace minenav
