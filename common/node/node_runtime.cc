@@ -146,6 +146,8 @@ void NodeRuntime::InstallSignalHandlers() {
   sigaction(SIGTERM, &action, nullptr);
 }
 
+void NodeRuntime::ClearStopSignal() { g_stop_signal = 0; }
+
 void NodeRuntime::PublishHeartbeat(int8_t state) {
   if (bus_ == nullptr) return;
   heartbeat_t hb{};

@@ -95,6 +95,8 @@ class NodeRuntime {
   bool StopRequested() const;
   // SIGINT and SIGTERM request a stop of every runtime in the process.
   static void InstallSignalHandlers();
+  // Forgets a received SIGINT/SIGTERM (tests that signal themselves).
+  static void ClearStopSignal();
 
   void PublishHeartbeat(int8_t state);
   int64_t heartbeats_published() const { return heartbeat_seq_; }
