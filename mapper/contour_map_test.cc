@@ -106,31 +106,32 @@ TEST(ContourMapTest, JoinOntoItselfClosesAndDetachReopens) {
 }
 
 TEST(ContourMapTest, SpliceABoxIntoAWallLeavesTheOccludedPartAlone) {
-  // The vending machine of 4.8: a wall along y = 0 sensed from above (free space y > 0,
-  // on the left, so the wall runs right to left), a box in front of it from x = 6 to 4.
+  // The vending machine of 4.8: a wall along y = 0 sensed from above (free space y > 0 on
+  // the left, so the wall runs left to right), a box in front of it from x = 4 to 6.
   ContourMap map;
-  const int wall = map.Create(Line(10, 0, 0, 11));
-  const int box = map.Create({{6, 0}, {6, 1}, {4, 1}, {4, 0}});
-  // Attach the box's start where it meets the wall at x = 6 (segment 3 runs 7 -> 6 ... 4 -> 3).
-  const auto first = map.Splice(wall, 3, {6.5, 0}, box, ContourMap::SpliceSide::kAttachStartAfterCut);
+  const int wall = map.Create(Line(0, 10, 0, 11));
+  const int box = map.Create({{4, 0}, {4, 1}, {6, 1}, {6, 0}});
+  // Attach the box's start where it meets the wall at x = 3.5 (segment 3 runs 3 -> 4).
+  const auto first = map.Splice(wall, 3, {3.5, 0}, box, ContourMap::SpliceSide::kAttachStartAfterCut);
   EXPECT_EQ(first.joined, wall);
   ASSERT_GE(first.remainder, 0);
-  // The remainder (6.5 .. 0) gets the box's end spliced in at x = 3.5.
+  // The remainder (3.5 .. 10) gets the box's end spliced in at x = 6.5.
   const Contour& rem = map.Get(first.remainder);
   int seg = -1;
   for (int k = 0; k < rem.NumSegments(); ++k) {
     const Segment s = rem.GetSegment(k);
-    if (std::min(s.a.x(), s.b.x()) <= 3.5 && std::max(s.a.x(), s.b.x()) >= 3.5) seg = k;
+    if (s.a.x() <= 6.5 && s.b.x() >= 6.5) seg = k;
   }
   ASSERT_GE(seg, 0);
-  const auto second = map.Splice(first.remainder, seg, {3.5, 0}, wall, ContourMap::SpliceSide::kAttachEndBeforeCut);
-  // One contour runs wall .. box .. wall; the occluded piece 6.5 .. 3.5 stays on its own.
+  const auto second = map.Splice(first.remainder, seg, {6.5, 0}, wall, ContourMap::SpliceSide::kAttachEndBeforeCut);
+  // One contour runs wall .. box .. wall; the occluded piece 3.5 .. 6.5 stays on its own.
   const Contour& through = map.Get(second.joined);
-  EXPECT_EQ(through.points.front(), Eigen::Vector2d(10, 0));
-  EXPECT_EQ(through.points.back(), Eigen::Vector2d(0, 0));
+  EXPECT_EQ(through.points.front(), Eigen::Vector2d(0, 0));
+  EXPECT_EQ(through.points.back(), Eigen::Vector2d(10, 0));
+  EXPECT_NEAR(through.Length(), 3.5 + 0.5 + 1 + 2 + 1 + 0.5 + 3.5, 1e-12);
   const Contour& hidden = map.Get(second.remainder);
-  EXPECT_EQ(hidden.points.front(), Eigen::Vector2d(6.5, 0));
-  EXPECT_EQ(hidden.points.back(), Eigen::Vector2d(3.5, 0));
+  EXPECT_EQ(hidden.points.front(), Eigen::Vector2d(3.5, 0));
+  EXPECT_EQ(hidden.points.back(), Eigen::Vector2d(6.5, 0));
   EXPECT_EQ(map.NumContours(), 2);
   ExpectIndexCorrect(map, 3);
 }
