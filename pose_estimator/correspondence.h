@@ -1,0 +1,92 @@
+#pragma once
+// Correspondence determination (thesis 3.1.1): each scan point is paired with the map
+// segment nearest to it, where the distance to a segment is the distance to its interior
+// (perpendicular, "point-to-line") or to its nearer endpoint ("point-to-point"). Points
+// farther than a threshold from every segment get no pairing.
+//
+// Three implementations share this interface so they can be compared (Table 9):
+//   kBruteForce   O(MN), every segment per point (Cox 1991)           brute_force_correspondence.h
+//   kGridSearch   segments bucketed in a grid, every cell within the threshold visited
+//                 (a simplified Gonzalez 1992)                          grid_search_correspondence.h
+//   kLookupTable  the thesis's table: a grassfire-grown grid whose cells hold the short
+//                 list of possibly nearest segments; one cell per point  lookup_table_correspondence.h
+
+#include <Eigen/Core>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "common/geometry.h"
+
+namespace minenav {
+
+struct SegmentMatch {
+  int segment = -1;  // index into the map's segments; -1 = no segment within the threshold
+  double distance = 0.0;  // m, point to segment
+  SegmentRegion region = SegmentRegion::kInterior;
+  Eigen::Vector2d closest = Eigen::Vector2d::Zero();  // nearest point on the segment
+
+  bool matched() const { return segment >= 0; }
+};
+
+class CorrespondenceSearch {
+ public:
+  virtual ~CorrespondenceSearch() = default;
+  // The nearest segment to p (map frame) no farther than max_distance (m). Ties go to the
+  // lower segment index so that all implementations agree exactly.
+  virtual SegmentMatch Nearest(const Eigen::Vector2d& p, double max_distance) const = 0;
+  virtual const std::vector<Segment>& segments() const = 0;
+  virtual const char* name() const = 0;
+};
+
+enum class CorrespondenceMethod { kBruteForce, kGridSearch, kLookupTable };
+const char* ToString(CorrespondenceMethod method);
+// "brute", "grid", "lookup"; returns false on anything else.
+bool ParseCorrespondenceMethod(const std::string& text, CorrespondenceMethod* out);
+
+struct CorrespondenceOptions {
+  CorrespondenceMethod method = CorrespondenceMethod::kLookupTable;
+  // Grid cell size for grid search and lookup table (m). 0 = choose from the map: about
+  // the median segment length, clamped to [0.1, 1] m, which keeps lists short (3.1.1).
+  double cell_size = 0.0;
+  // How far from the map the lookup table is grown (m): points farther than this never
+  // match. It must cover the largest correspondence threshold used (the initial error).
+  double max_distance = 3.0;
+};
+
+// Builds the chosen structure over `segments` (which should be cleaned by
+// PrepareSegmentMap first: zero-length and duplicate segments are tolerated but waste time).
+std::unique_ptr<CorrespondenceSearch> MakeCorrespondenceSearch(std::vector<Segment> segments,
+                                                               const CorrespondenceOptions& options);
+
+// Nearest segment for every point (out is resized to points.size()).
+void FindCorrespondences(const CorrespondenceSearch& search, const std::vector<Eigen::Vector2d>& points,
+                         double max_distance, std::vector<SegmentMatch>* out);
+
+
+// Default cell size for a map (m): median segment length clamped to [0.1, 1].
+double ChooseCellSize(const std::vector<Segment>& segments);
+
+// A segment with what every distance query needs precomputed; all three searches use the
+// same kernel so that Table 9 compares search strategies, not arithmetic.
+struct PreparedSegment {
+  Eigen::Vector2d a = Eigen::Vector2d::Zero();
+  Eigen::Vector2d d = Eigen::Vector2d::Zero();  // b - a
+  double inv_length2 = 0.0;                     // 1 / |d|^2, 0 for a degenerate segment
+
+  explicit PreparedSegment(const Segment& s)
+      : a(s.a), d(s.b - s.a), inv_length2(d.squaredNorm() > 0.0 ? 1.0 / d.squaredNorm() : 0.0) {}
+
+  double SquaredDistance(const Eigen::Vector2d& p) const {
+    const Eigen::Vector2d ap = p - a;
+    double t = ap.dot(d) * inv_length2;
+    t = t < 0.0 ? 0.0 : (t > 1.0 ? 1.0 : t);
+    return (ap - t * d).squaredNorm();
+  }
+};
+std::vector<PreparedSegment> PrepareSegments(const std::vector<Segment>& segments);
+
+// The full match (region, closest point) of p against one segment.
+SegmentMatch MakeMatch(const Eigen::Vector2d& p, const std::vector<Segment>& segments, int index);
+
+}  // namespace minenav

@@ -1,0 +1,24 @@
+# Iconic pose estimator (thesis chapter 3, App. A.2-A.3): library, tests, process.
+minenav_algorithm_library(minenav_iconic
+  ${CMAKE_CURRENT_LIST_DIR}/correspondence.cc
+  ${CMAKE_CURRENT_LIST_DIR}/grid_search_correspondence.cc
+  ${CMAKE_CURRENT_LIST_DIR}/iconic_estimator.cc
+  ${CMAKE_CURRENT_LIST_DIR}/iconic_matcher.cc
+  ${CMAKE_CURRENT_LIST_DIR}/iconic_residual.cc
+  ${CMAKE_CURRENT_LIST_DIR}/lookup_table_correspondence.cc
+  ${CMAKE_CURRENT_LIST_DIR}/multi_scan_matcher.cc
+  ${CMAKE_CURRENT_LIST_DIR}/scan_polylines.cc
+  ${CMAKE_CURRENT_LIST_DIR}/scan_set_map.cc
+  ${CMAKE_CURRENT_LIST_DIR}/segment_grid.cc
+  ${CMAKE_CURRENT_LIST_DIR}/segment_map.cc)
+target_link_libraries(minenav_iconic PUBLIC minenav_common Eigen3::Eigen)
+
+minenav_test(NAME iconic_test NO_LCM
+  SOURCES
+    ${CMAKE_CURRENT_LIST_DIR}/correspondence_test.cc
+    ${CMAKE_CURRENT_LIST_DIR}/iconic_residual_test.cc
+    ${CMAKE_CURRENT_LIST_DIR}/iconic_matcher_test.cc
+    ${CMAKE_CURRENT_LIST_DIR}/multi_scan_matcher_test.cc
+    ${CMAKE_CURRENT_LIST_DIR}/iconic_estimator_test.cc
+    ${CMAKE_CURRENT_LIST_DIR}/iconic_test_world.cc
+  LIBS minenav_iconic)
