@@ -70,9 +70,9 @@ struct ResearchMineOptions {
   double pillar_size_max = 14.0;   // m
   double entry_width_min = 3.0;    // m, each entry/crosscut width drawn in [min, max]
   double entry_width_max = 4.0;    // m
-  double corner_jitter = 0.4;      // m, each pillar corner moved uniformly in [-j, j] in x and y
+  double corner_jitter = 0.25;     // m, each pillar corner moved uniformly in [-j, j] in x and y
   double max_segment_length = 1.0; // m
-  double midpoint_displacement = 0.15;  // m, as MineOptions::midpoint_displacement
+  double midpoint_displacement = 0.1;   // m, as MineOptions::midpoint_displacement
   double crib_size = 0.6;          // m, side of a square crib block
   double cribs_per_entry = 1.5;    // mean number of crib blocks per entry segment between pillars
   double post_size = 0.3;          // m, side of a square timber post
