@@ -1,0 +1,2 @@
+minenav_executable(waypoint_driver waypoint_driver_main.cc)
+target_link_libraries(waypoint_driver PRIVATE minenav_tracker minenav_node)
