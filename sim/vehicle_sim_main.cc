@@ -47,7 +47,7 @@ struct VehicleSimOptions {
   std::string map_out;        // save the surveyed map JSON here
   std::string start_pose = "auto";
   double rate = 20.0;              // Hz
-  double map_period = 2.0;         // s
+  double map_period = 1.0;         // s
   SkidSteerOptions vehicle;
   // A modest wheel-odometry error so ODOMETRY drifts like a real miner's; zero them for
   // perfect dead reckoning.
