@@ -2,6 +2,7 @@
 // Test helpers (tests and benches only): tiny inline worlds and exact ray-cast scans from
 // common/geometry.h CastRay, with optional Gaussian range noise.
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <vector>
@@ -9,6 +10,7 @@
 #include "common/angle.h"
 #include "common/geometry.h"
 #include "common/scan.h"
+#include "mapper/contour_map.h"
 
 namespace minenav::mapper::testing {
 
@@ -58,6 +60,20 @@ inline std::vector<Segment> SmallRoomWorld() {
   w = Concat(w, Rectangle(5, 4, 7, 7));
   w = Concat(w, Rectangle(12, 3, 15, 5));
   return w;
+}
+
+// The true contours of SmallRoomWorld, oriented with free space on the left: the room
+// counter-clockwise, the pillars clockwise; vertices every `nominal` metres.
+inline ContourMap SmallRoomContours(double nominal = 0.5) {
+  ContourMap map;
+  auto add = [&](std::vector<Eigen::Vector2d> corners, bool free_inside) {
+    if (!free_inside) std::reverse(corners.begin(), corners.end());
+    map.Create(ResamplePolyline(corners, true, nominal), true);
+  };
+  add({{0, 0}, {20, 0}, {20, 12}, {0, 12}}, true);
+  add({{5, 4}, {7, 4}, {7, 7}, {5, 7}}, false);
+  add({{12, 3}, {15, 3}, {15, 5}, {12, 5}}, false);
+  return map;
 }
 
 }  // namespace minenav::mapper::testing

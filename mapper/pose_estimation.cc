@@ -1,0 +1,170 @@
+#include "mapper/pose_estimation.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <vector>
+
+#include "mapper/integral_error.h"
+#include "mapper/line_search.h"
+
+namespace minenav::mapper {
+
+std::string ValidateOptions(const PoseEstimationOptions& o) {
+  std::ostringstream why;
+  if (!(o.final_threshold > 0.0) || !(o.initial_threshold >= o.final_threshold))
+    why << "need 0 < final_threshold <= initial_threshold, got " << o.final_threshold << " and "
+        << o.initial_threshold << " m";
+  else if (!(o.threshold_factor > 0.0 && o.threshold_factor <= 1.0))
+    why << "threshold_factor must be in (0, 1], got " << o.threshold_factor;
+  else if (o.max_iterations < 1)
+    why << "max_iterations must be >= 1, got " << o.max_iterations;
+  else if (!(o.step_resolution > 0.0) || !(o.gradient_tolerance >= 0.0))
+    why << "step_resolution must be > 0 and gradient_tolerance >= 0";
+  else if (o.min_pieces < 1)
+    why << "min_pieces must be >= 1, got " << o.min_pieces;
+  return why.str();
+}
+
+namespace {
+
+// The pieces of one correspondence, with their geometry copied out for fast re-evaluation.
+struct PosePiece {
+  Eigen::Vector2d q_i, q_j;  // vehicle frame
+  Eigen::Vector2d s, e;      // contour segment, world frame
+};
+
+std::vector<PosePiece> CollectPieces(const PreprocessedScan& scan, const ScanCorrespondence& corr,
+                                     const ContourMap& map) {
+  std::vector<PosePiece> out;
+  out.reserve(corr.pieces.size());
+  for (const ErrorPiece& p : corr.pieces) {
+    const auto& pts = scan.partial_scans[static_cast<size_t>(p.partial)].points;
+    const Contour& c = map.Get(p.segment.contour);
+    const Segment seg = c.GetSegment(p.segment.segment);
+    out.push_back({pts[static_cast<size_t>(p.i)], pts[static_cast<size_t>(p.j)], seg.a, seg.b});
+  }
+  return out;
+}
+
+double Error(const std::vector<PosePiece>& pieces, const Pose2& pose) {
+  double f = 0.0;
+  for (const PosePiece& p : pieces) f += PieceError(pose * p.q_i, pose * p.q_j, p.s, p.e);
+  return f;
+}
+
+Eigen::Vector3d Gradient(const std::vector<PosePiece>& pieces, const Pose2& pose, double* value) {
+  Eigen::Vector3d g = Eigen::Vector3d::Zero();
+  double f = 0.0;
+  for (const PosePiece& p : pieces) {
+    const PosePieceGradient pg = PieceErrorPoseGradient(p.q_i, p.q_j, pose, p.s, p.e);
+    g += pg.gradient;
+    f += pg.value;
+  }
+  if (value) *value = f;
+  return g;
+}
+
+double MatchedLength(const std::vector<PosePiece>& pieces, const Pose2& pose) {
+  double len = 0.0;
+  for (const PosePiece& p : pieces) len += std::abs((p.e - p.s).normalized().dot(pose * p.q_j - pose * p.q_i));
+  return len;
+}
+
+// RMS distance of the matched points from the vehicle origin: converts an angle step into
+// the distance the points move.
+double LeverArm(const std::vector<PosePiece>& pieces) {
+  double sum = 0.0;
+  for (const PosePiece& p : pieces) sum += p.q_i.squaredNorm();
+  return std::max(1.0, std::sqrt(sum / static_cast<double>(std::max<size_t>(1, pieces.size()))));
+}
+
+}  // namespace
+
+ScanFit MeasureScanFit(const PreprocessedScan& scan, const Pose2& pose, const ContourMap& map, double threshold) {
+  const ScanCorrespondence corr = CorrespondScan(scan, pose, map, threshold);
+  const std::vector<PosePiece> pieces = CollectPieces(scan, corr, map);
+  ScanFit fit;
+  fit.error = Error(pieces, pose);
+  fit.matched_length = MatchedLength(pieces, pose);
+  fit.num_pieces = static_cast<int>(pieces.size());
+  fit.num_points = corr.num_points;
+  fit.num_matched = corr.num_matched;
+  return fit;
+}
+
+PoseEstimationResult EstimatePose(const PreprocessedScan& scan, const Pose2& initial, const ContourMap& map,
+                                  const PoseEstimationOptions& o) {
+  PoseEstimationResult out;
+  out.pose = initial;
+  double threshold = o.initial_threshold;
+  for (int iter = 1; iter <= o.max_iterations; ++iter) {
+    out.iterations = iter;
+    out.threshold = threshold;
+    const ScanCorrespondence corr = CorrespondScan(scan, out.pose, map, threshold);
+    const std::vector<PosePiece> pieces = CollectPieces(scan, corr, map);
+    if (static_cast<int>(pieces.size()) < o.min_pieces) {
+      out.reason = "too few correspondences (" + std::to_string(pieces.size()) + " pieces within " +
+                   std::to_string(threshold) + " m)";
+      out.fit = MeasureScanFit(scan, out.pose, map, threshold);
+      return out;
+    }
+    const double length = std::max(1e-9, MatchedLength(pieces, out.pose));
+    const double lever = LeverArm(pieces);
+    const Pose2 before = out.pose;
+
+    // Line search on x, y along the negative gradient; λ is metres.
+    double f0 = 0.0;
+    const Eigen::Vector3d g = Gradient(pieces, out.pose, &f0);
+    const Eigen::Vector2d gxy = g.head<2>();
+    bool small_step_xy = true;
+    if (gxy.norm() > 0.0) {
+      const Eigen::Vector2d dir = -gxy.normalized();
+      const Pose2 base = out.pose;
+      const LineSearchResult ls = LineSearch(
+          [&](double l) { return Error(pieces, Pose2(base.x + l * dir.x(), base.y + l * dir.y(), base.theta)); }, f0,
+          threshold, o.step_resolution);
+      if (ls.lambda > 0.0) {
+        out.pose = Pose2(base.x + ls.lambda * dir.x(), base.y + ls.lambda * dir.y(), base.theta);
+        f0 = ls.value;
+      }
+      small_step_xy = ls.lambda < o.step_resolution * 2.0;
+    }
+    // Line search on θ; λ is radians, bounded so no point moves more than the threshold.
+    double f1 = 0.0;
+    const double gt = Gradient(pieces, out.pose, &f1).z();
+    bool small_step_t = true;
+    if (gt != 0.0) {
+      const double dir = gt > 0.0 ? -1.0 : 1.0;
+      const Pose2 base = out.pose;
+      const LineSearchResult ls =
+          LineSearch([&](double l) { return Error(pieces, Pose2(base.x, base.y, base.theta + dir * l)); }, f1,
+                     threshold / lever, o.step_resolution / lever);
+      if (ls.lambda > 0.0) out.pose = Pose2(base.x, base.y, NormalizeAngle(base.theta + dir * ls.lambda));
+      small_step_t = ls.lambda < 2.0 * o.step_resolution / lever;
+    }
+
+    const bool at_final = threshold <= o.final_threshold;
+    const double grad_xy = gxy.norm() / length, grad_t = std::abs(gt) / (lever * length);
+    if (at_final) {
+      if (grad_xy < o.gradient_tolerance && grad_t < o.gradient_tolerance) {
+        out.converged = true;
+        out.reason = "gradient small";
+      } else if (small_step_xy && small_step_t) {
+        out.converged = true;
+        out.reason = "step (lambda) small";
+      } else if (TranslationDistance(before, out.pose) < o.min_translation_change &&
+                 HeadingDistance(before, out.pose) < o.min_rotation_change) {
+        out.converged = true;
+        out.reason = "pose change small";
+      }
+      if (out.converged) break;
+    }
+    threshold = std::max(o.final_threshold, threshold * o.threshold_factor);
+  }
+  if (!out.converged) out.reason = "iteration limit";
+  out.fit = MeasureScanFit(scan, out.pose, map, out.threshold);
+  return out;
+}
+
+}  // namespace minenav::mapper

@@ -1,0 +1,71 @@
+#pragma once
+// Pose estimation against the contour map (thesis 4.3.3): minimise the integral error
+// (integral_error.h) over the scan pose by line search, first on (x, y) along their
+// gradient, then on θ, recomputing correspondence every iteration with a threshold that
+// starts near the largest expected initial error and shrinks by a constant factor to the
+// sensor noise level. Four termination conditions: small gradient, small step (λ), small
+// change in pose, iteration limit.
+//
+// Front-end seam (7.2.2): EstimatePose takes any initial pose. A front end (the iconic
+// estimator, odometry, an operator) brings the pose close first; the caller then lowers
+// initial_threshold accordingly (e.g. to 0.5 m) so the contour metric only refines.
+
+#include <string>
+
+#include "common/pose2.h"
+#include "mapper/contour_map.h"
+#include "mapper/correspondence.h"
+#include "mapper/scan_preprocessing.h"
+
+namespace minenav::mapper {
+
+struct PoseEstimationOptions {
+  // m; correspondence threshold on the first iteration (≈ the largest initial error).
+  double initial_threshold = 3.0;
+  // m; the threshold it shrinks to (≈ a few sensor noise σ).
+  double final_threshold = 0.1;
+  // Per-iteration factor applied to the threshold (0 < f <= 1).
+  double threshold_factor = 0.9;
+  // Iteration limit (termination condition 4).
+  int max_iterations = 120;
+  // m; gradient small: |∂F/∂(x,y)| and |∂F/∂θ| / lever arm below this times the matched
+  // length (i.e. a mean offset of this size) ends the search.
+  double gradient_tolerance = 1e-6;
+  // m; line-search resolution; a step below it counts as "λ small".
+  double step_resolution = 1e-5;
+  // m and rad; change in pose below both ends the search.
+  double min_translation_change = 2e-5;
+  double min_rotation_change = 2e-6;
+  // Fewer error pieces than this: no estimate (not enough overlap with the map).
+  int min_pieces = 20;
+};
+
+std::string ValidateOptions(const PoseEstimationOptions& options);
+
+// How well a scan at a pose fits the map under a threshold.
+struct ScanFit {
+  double error = 0.0;           // m^3, F: the sum of the pieces' integral errors
+  double matched_length = 0.0;  // m, Σ |l| over the pieces
+  int num_pieces = 0;
+  int num_points = 0;
+  int num_matched = 0;
+  // m^2, F / matched_length: mean squared distance along the matched scan.
+  double MeanSquaredDistance() const { return matched_length > 0.0 ? error / matched_length : 0.0; }
+  double MatchedFraction() const { return num_points > 0 ? static_cast<double>(num_matched) / num_points : 0.0; }
+};
+ScanFit MeasureScanFit(const PreprocessedScan& scan, const Pose2& world_T_vehicle, const ContourMap& map,
+                       double threshold);
+
+struct PoseEstimationResult {
+  Pose2 pose;              // world_T_vehicle
+  bool converged = false;  // ended on a tolerance, not on the iteration limit or a failure
+  std::string reason;      // which termination condition, or why no estimate
+  int iterations = 0;
+  double threshold = 0.0;  // m, correspondence threshold at the end
+  ScanFit fit;             // at `pose` under `threshold`
+};
+
+PoseEstimationResult EstimatePose(const PreprocessedScan& scan, const Pose2& initial_world_T_vehicle,
+                                  const ContourMap& map, const PoseEstimationOptions& options = {});
+
+}  // namespace minenav::mapper

@@ -1,0 +1,86 @@
+#include "mapper/pose_estimation.h"
+
+#include <gtest/gtest.h>
+
+#include "mapper/line_search.h"
+#include "mapper/test_world.h"
+
+namespace minenav::mapper {
+namespace {
+
+using testing::MakeScan;
+using testing::ScanSpec;
+using testing::SmallRoomContours;
+using testing::SmallRoomWorld;
+
+TEST(LineSearchTest, FindsTheMinimumOfAParabola) {
+  const auto ls = LineSearch([](double l) { return (l - 0.37) * (l - 0.37); }, 0.37 * 0.37, 3.0, 1e-6);
+  EXPECT_NEAR(ls.lambda, 0.37, 2e-6);
+  EXPECT_LT(ls.evaluations, 60);
+  const auto none = LineSearch([](double l) { return 1.0 + l; }, 1.0, 3.0, 1e-6);
+  EXPECT_EQ(none.lambda, 0.0);
+}
+
+TEST(PoseEstimationTest, OptionsAreValidated) {
+  PoseEstimationOptions o;
+  EXPECT_EQ(ValidateOptions(o), "");
+  o.final_threshold = 5;
+  EXPECT_NE(ValidateOptions(o), "");
+}
+
+TEST(PoseEstimationTest, TrueMapZeroErrorAtTruth) {
+  const ContourMap map = SmallRoomContours();
+  const Pose2 truth(9.0, 8.5, 0.2);
+  const PreprocessedScan scan = PreprocessScan(MakeScan(SmallRoomWorld(), truth), {});
+  const ScanFit fit = MeasureScanFit(scan, truth, map, 0.1);
+  EXPECT_LT(fit.MeanSquaredDistance(), 1e-10);  // ranges are floats: ~1e-6 m
+  EXPECT_GT(fit.MatchedFraction(), 0.95);
+}
+
+struct Case {
+  Pose2 truth, start;
+};
+
+class PoseEstimationRecovers : public ::testing::TestWithParam<Case> {};
+
+TEST_P(PoseEstimationRecovers, ExactScan) {
+  const ContourMap map = SmallRoomContours();
+  const Case c = GetParam();
+  const PreprocessedScan scan = PreprocessScan(MakeScan(SmallRoomWorld(), c.truth), {});
+  const PoseEstimationResult r = EstimatePose(scan, c.start, map);
+  EXPECT_TRUE(r.converged) << r.reason;
+  EXPECT_LT(TranslationDistance(r.pose, c.truth), 1e-3) << r.pose << " " << r.reason << " it " << r.iterations;
+  EXPECT_LT(HeadingDistance(r.pose, c.truth), DegToRad(0.01));
+}
+
+INSTANTIATE_TEST_SUITE_P(Starts, PoseEstimationRecovers,
+                         ::testing::Values(Case{{9.0, 8.5, 0.2}, {9.3, 8.2, 0.25}},
+                                           Case{{3.0, 2.0, -1.0}, {2.5, 2.6, -0.92}},
+                                           Case{{17.0, 9.0, 2.5}, {16.6, 9.4, 2.56}},
+                                           Case{{10.0, 1.5, 0.0}, {10.2, 1.3, -0.06}}));
+
+TEST(PoseEstimationTest, NoisyScanWithinACentimetre) {
+  const ContourMap map = SmallRoomContours();
+  const Pose2 truth(9.0, 8.5, 0.2);
+  ScanSpec spec;
+  spec.range_sigma = 0.03;
+  spec.num_points = 2048;
+  const PreprocessedScan scan = PreprocessScan(MakeScan(SmallRoomWorld(), truth, spec), {});
+  const PoseEstimationResult r = EstimatePose(scan, Pose2(9.33, 8.2, 0.2 + DegToRad(3.3)), map);
+  EXPECT_LT(TranslationDistance(r.pose, truth), 0.01) << r.pose << " " << r.reason;
+  EXPECT_LT(HeadingDistance(r.pose, truth), DegToRad(0.1));
+  EXPECT_GT(r.fit.MatchedFraction(), 0.9);
+}
+
+TEST(PoseEstimationTest, NoOverlapIsReportedNotGuessed) {
+  const ContourMap map = SmallRoomContours();
+  // A scan of a different room far away: nothing corresponds.
+  const PreprocessedScan scan =
+      PreprocessScan(MakeScan(testing::Rectangle(100, 100, 104, 103), Pose2(102, 101, 0)), {});
+  const PoseEstimationResult r = EstimatePose(scan, Pose2(102, 101, 0), map);
+  EXPECT_FALSE(r.converged);
+  EXPECT_NE(r.reason.find("too few correspondences"), std::string::npos) << r.reason;
+}
+
+}  // namespace
+}  // namespace minenav::mapper
