@@ -1,0 +1,24 @@
+#pragma once
+// The subcommands of log_tool (log_tool_main.cc dispatches). Each takes the arguments
+// after its name, returns the process exit code, and throws UsageError / InputError
+// (exit 2) for bad flags and input; main prints those as one line.
+
+#include <string>
+#include <vector>
+
+namespace minenav {
+
+int RunInfoCommand(const std::vector<std::string>& args);
+int RunExportCommand(const std::vector<std::string>& args);
+int RunRenderCommand(const std::vector<std::string>& args);
+int RunSurveyCommand(const std::vector<std::string>& args);
+int RunGenerateCommand(const std::vector<std::string>& args);
+
+// Removes every occurrence of --name VALUE / --name=VALUE from args and returns the values
+// in order (for flags that may repeat, which ConfigSchema does not support).
+std::vector<std::string> TakeRepeatedFlag(std::vector<std::string>* args, const std::string& name);
+
+// Throws UsageError when `path` is empty, naming the flag.
+void RequireOutputPath(const std::string& path, const std::string& flag);
+
+}  // namespace minenav
