@@ -1,0 +1,183 @@
+#include "pose_estimator/feature_pose_estimator.h"
+
+#include <chrono>
+#include <cmath>
+
+namespace minenav {
+namespace {
+
+double SecondsSince(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// Covariance of map_T_vehicle = map_T_sensor * sensor_T_vehicle from that of map_T_sensor.
+Eigen::Matrix3d VehicleCovariance(const Eigen::Matrix3d& sensor_cov, const Pose2& map_T_sensor,
+                                  const Pose2& sensor_T_vehicle) {
+  const double c = std::cos(map_T_sensor.theta), s = std::sin(map_T_sensor.theta);
+  const double a = sensor_T_vehicle.x, b = sensor_T_vehicle.y;
+  Eigen::Matrix3d j;
+  j << 1, 0, -s * a - c * b,  //
+      0, 1, c * a - s * b,    //
+      0, 0, 1;
+  return j * sensor_cov * j.transpose();
+}
+
+}  // namespace
+
+double PointSupport(const LadarScan& scan, const Pose2& map_T_sensor,
+                    const std::vector<Segment>& segments, double distance) {
+  const std::vector<ScanPoint> pts = ScanPointsInSensorFrame(scan);
+  if (pts.empty()) return 0.0;
+  int near = 0;
+  for (const ScanPoint& p : pts) {
+    const Eigen::Vector2d w = map_T_sensor * p.point;
+    for (const Segment& s : segments) {
+      if (PointToSegmentDistance(w, s) <= distance) {
+        ++near;
+        break;
+      }
+    }
+  }
+  return static_cast<double>(near) / static_cast<double>(pts.size());
+}
+
+std::string ValidateOptions(const FeaturePoseEstimatorOptions& o) {
+  if (!(o.prediction.max_range > 0.0)) return "prediction max_range must be > 0";
+  if (!(o.extraction.corner.arm_length > 0.0)) return "corner arm_length must be > 0";
+  if (!(o.extraction.corner.min_corner_angle < o.extraction.corner.max_corner_angle)) {
+    return "min_corner_angle must be below max_corner_angle";
+  }
+  if (!(o.matching.angerr >= 0.0 && o.matching.poserr >= 0.0)) return "angerr and poserr must be >= 0";
+  if (o.matching.angerr >= kPi / 2.0) return "angerr must be below 90 deg (2.1.6)";
+  if (!(o.minimization.point_sigma > 0.0)) return "point_sigma must be > 0";
+  if (o.min_matches < 1) return "min_matches must be >= 1";
+  return "";
+}
+
+FeaturePoseEstimator::FeaturePoseEstimator(const std::vector<Segment>& map,
+                                           const FeaturePoseEstimatorOptions& options)
+    : options_(options) {
+  FeatureMapBuild build = BuildFeatureMap(map, options.map);
+  map_ = std::move(build.map);
+  dropped_ = build.dropped;
+}
+
+FeaturePoseResult FeaturePoseEstimator::Estimate(const LadarScan& scan,
+                                                 const Pose2& initial_map_T_vehicle) const {
+  FeaturePoseResult result;
+  result.pose = initial_map_T_vehicle;
+  const std::string invalid = ValidateScan(scan);
+  if (!invalid.empty()) {
+    result.reason = "invalid scan: " + invalid;
+    return result;
+  }
+  const Pose2 initial_sensor = initial_map_T_vehicle * scan.sensor_offset;
+
+  auto t0 = std::chrono::steady_clock::now();
+  PredictionOptions prediction = options_.prediction;
+  prediction.max_range = std::min(prediction.max_range, scan.max_range);
+  const PredictedFeatures predicted =
+      PredictFeatures(map_, initial_sensor.translation(), prediction);
+  result.timings.prediction = SecondsSince(t0);
+  std::vector<Segment> predicted_segments;
+  for (int i : predicted.segments_in_range_ids) predicted_segments.push_back(map_.segments[static_cast<size_t>(i)]);
+
+  t0 = std::chrono::steady_clock::now();
+  const ExtractedFeatures sensed = ExtractFeatures(scan, options_.extraction);
+  result.timings.extraction = SecondsSince(t0);
+  result.num_points = sensed.num_points;
+  for (const Feature& f : sensed.features) {
+    (f.type == FeatureType::kCorner ? result.sensed_corners : result.sensed_lines)++;
+  }
+
+  t0 = std::chrono::steady_clock::now();
+  // Model corners the corner operator cannot find (angles far outside its interval) only
+  // cost matching time; occlusion corners are kept whatever their angle.
+  const auto& corner = options_.extraction.corner;
+  std::vector<Feature> model;
+  for (const Feature& f : predicted.features) {
+    if (f.type == FeatureType::kCorner && !f.occlusion &&
+        (f.concave_angle < corner.min_corner_angle - options_.matching.concerr ||
+         f.concave_angle > corner.max_corner_angle + options_.matching.concerr)) {
+      continue;
+    }
+    model.push_back(f);
+  }
+  std::vector<Feature> model_in_sensor;
+  model_in_sensor.reserve(model.size());
+  for (const Feature& f : model) model_in_sensor.push_back(TransformFeature(f, initial_sensor));
+  std::vector<size_t> order(model.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+    return model_in_sensor[a].Azimuth() < model_in_sensor[b].Azimuth();
+  });
+  std::vector<Feature> model_sorted, model_sorted_in_sensor;
+  for (size_t i : order) {
+    model_sorted.push_back(model[i]);
+    model_sorted_in_sensor.push_back(model_in_sensor[i]);
+    (model[i].type == FeatureType::kCorner ? result.predicted_corners : result.predicted_lines)++;
+  }
+  const MatchResult match = MatchFeatures(sensed.features, model_sorted_in_sensor, options_.matching);
+  result.timings.matching = SecondsSince(t0);
+  result.candidate_pairs = match.candidate_pairs;
+  result.matches = static_cast<int>(match.pairs.size());
+  result.search_complete = match.search_complete;
+
+  if (sensed.features.empty()) {
+    result.reason = "no features in the scan";
+    return result;
+  }
+  if (model.empty()) {
+    result.reason = "no map features predicted";
+    return result;
+  }
+  if (result.matches == 0) {
+    result.reason = "no consistent matches";
+    return result;
+  }
+
+  t0 = std::chrono::steady_clock::now();
+  std::vector<Correspondence> pairs;
+  for (const FeaturePair& p : match.pairs) {
+    pairs.push_back({sensed.features[static_cast<size_t>(p.sensed)], model_sorted[static_cast<size_t>(p.model)]});
+  }
+  const MinimizationResult min = MinimizeFeatureError(pairs, initial_sensor, options_.minimization);
+  result.timings.minimization = SecondsSince(t0);
+  result.iterations = min.iterations;
+  result.used = min.used;
+  result.residual = min.rms_distance;
+  const Pose2 sensor_T_vehicle = scan.sensor_offset.inverse();
+  result.pose = min.pose * sensor_T_vehicle;
+  result.covariance = VehicleCovariance(min.covariance, min.pose, sensor_T_vehicle);
+  result.converged = min.converged;
+  result.reason = min.reason;
+  // Too few correspondences: still report what they observe (pose and covariance), but
+  // a set this small is too easily consistent by chance to be trusted.
+  if (result.converged && result.used < options_.min_matches) {
+    result.converged = false;
+    result.reason = "only " + std::to_string(result.used) + " consistent correspondences (need " +
+                    std::to_string(options_.min_matches) + ")";
+  }
+  // The match assumed the pose within poserr and angerr of the estimate; a result beyond
+  // that contradicts its own premises.
+  const double moved = TranslationDistance(min.pose, initial_sensor);
+  const double turned = HeadingDistance(min.pose, initial_sensor);
+  const auto& m = options_.matching;
+  if (result.converged && (moved > m.poserr + m.disterr || turned > m.angerr + m.binangerr)) {
+    result.converged = false;
+    result.reason = "estimate moved beyond the matching bounds (" + std::to_string(moved) +
+                    " m, " + std::to_string(RadToDeg(turned)) + " deg)";
+  }
+  // Our check beyond the thesis: at the estimate, enough of the scan must lie on the map.
+  if (result.converged && options_.min_support > 0.0) {
+    result.support = PointSupport(scan, min.pose, predicted_segments, options_.support_distance);
+    if (result.support < options_.min_support) {
+      result.converged = false;
+      result.reason = "only " + std::to_string(static_cast<int>(100.0 * result.support)) +
+                      "% of the scan lies on the map at the estimate";
+    }
+  }
+  return result;
+}
+
+}  // namespace minenav
