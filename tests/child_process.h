@@ -1,0 +1,41 @@
+#pragma once
+// Starting and stopping the fleet's processes from a test: posix_spawn with the output
+// going to a file, signals, and waits with a timeout. The destructor kills and reaps a
+// child that is still running, so a failing test never leaves processes behind.
+
+#include <sys/types.h>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace minenav::testing {
+
+class ChildProcess {
+ public:
+  // argv[0] is looked up on PATH when it has no '/'. stdout and stderr go to
+  // `output_path` (truncated) or are inherited when it is empty. Throws std::runtime_error
+  // when the program cannot be started.
+  explicit ChildProcess(const std::vector<std::string>& argv, const std::string& output_path = "");
+  ~ChildProcess();
+  ChildProcess(const ChildProcess&) = delete;
+  ChildProcess& operator=(const ChildProcess&) = delete;
+
+  pid_t pid() const { return pid_; }
+  void Signal(int signal);
+  // The exit code (128 + signal number if killed), or nullopt if still running after
+  // timeout_s seconds.
+  std::optional<int> Wait(double timeout_s);
+  bool Running();
+
+ private:
+  pid_t pid_ = -1;
+  std::optional<int> exit_code_;
+};
+
+// The whole file as a string ("" if it cannot be read).
+std::string ReadTextFile(const std::string& path);
+// Lines of `text` containing `needle`.
+std::vector<std::string> LinesContaining(const std::string& text, const std::string& needle);
+
+}  // namespace minenav::testing
