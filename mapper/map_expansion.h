@@ -1,0 +1,49 @@
+#pragma once
+// Map expansion (thesis 4.4): after a scan's pose is estimated, the parts of its partial
+// scans that correspond to no contour are new. Each run of unmatched points becomes
+//   - an extension of a contour's end, when the run follows points matched near that end
+//     (4.4.2), or of a contour's start when it precedes points matched near that start;
+//   - a connection of one contour's end to another's start (or to its own start, closing
+//     it) when both hold (4.4.3);
+//   - a new contour otherwise (4.4.1): the first and last points of the run and scan
+//     points in between at least the nominal segment length apart (a rough fit that
+//     contour fitting then improves).
+// Runs that leave a contour at an interior segment are the dynamic-world cases of 4.8.1
+// (splice, join); in a static world they come from corners and noise, and the short ones
+// are ignored. Longer ones become new contours here; issue 6 replaces that with splicing.
+
+#include <vector>
+
+#include "common/pose2.h"
+#include "mapper/contour_map.h"
+#include "mapper/scan_preprocessing.h"
+
+namespace minenav::mapper {
+
+struct MapExpansionOptions {
+  // m; scan points farther than this from every contour are unmapped.
+  double correspondence_threshold = 0.2;
+  // m; vertex spacing of new contour pieces.
+  double nominal_segment_length = 0.5;
+  // Points; unmatched runs with fewer points are ignored (vertex wedges, noise).
+  int min_new_points = 5;
+  // m; unmatched runs shorter than this (along the scan) are ignored.
+  double min_new_length = 0.3;
+  // m; a run continues a contour's end (start) when the matched point next to it lies
+  // this close to that end (start) vertex, or matched its last (first) segment.
+  double end_snap_distance = 1.0;
+};
+
+std::string ValidateOptions(const MapExpansionOptions& options);
+
+struct MapExpansionResult {
+  std::vector<int> created;    // ids of new contours
+  std::vector<int> extended;   // ids of contours extended at either end
+  std::vector<int> connected;  // ids of contours that absorbed a connection (or closed)
+  std::vector<int> Touched() const;  // all of the above that still exist, sorted, unique
+};
+
+MapExpansionResult ExpandMap(const PreprocessedScan& scan, const Pose2& world_T_vehicle, ContourMap& map,
+                             const MapExpansionOptions& options = {});
+
+}  // namespace minenav::mapper
