@@ -258,14 +258,26 @@ std::vector<Segment> GenerateResearchMine(const ResearchMineOptions& o) {
     const double whole = std::floor(mean);
     return static_cast<int>(whole) + (unit(rng) < mean - whole ? 1 : 0);
   };
+  std::vector<std::pair<Vec, double>> placed;  // lower-left corner and side of each block
   auto place = [&](double size, bool along_x, double span0, double span1, double wall_lo, double wall_hi) {
-    // Along the entry within [span0 + 1, span1 - 1 - size]; against the low or high wall.
+    // Along the entry within [span0 + 1, span1 - 1 - size]; against the low or high wall;
+    // at least 0.2 m from any other block (a few tries, else left out).
     const double lo = span0 + 1.0, hi = span1 - 1.0 - size;
     if (hi <= lo) return;
-    const double s = lo + unit(rng) * (hi - lo);
-    const bool low_side = unit(rng) < 0.5;
-    const double across = low_side ? wall_lo + margin : wall_hi - margin - size;
-    AddSquare(along_x ? Vec(s, across) : Vec(across, s), size, &out);
+    for (int attempt = 0; attempt < 10; ++attempt) {
+      const double s = lo + unit(rng) * (hi - lo);
+      const bool low_side = unit(rng) < 0.5;
+      const double across = low_side ? wall_lo + margin : wall_hi - margin - size;
+      const Vec corner = along_x ? Vec(s, across) : Vec(across, s);
+      bool clear = true;
+      for (const auto& [c, sz] : placed)
+        clear = clear && (corner.x() > c.x() + sz + 0.2 || c.x() > corner.x() + size + 0.2 ||
+                          corner.y() > c.y() + sz + 0.2 || c.y() > corner.y() + size + 0.2);
+      if (!clear) continue;
+      placed.emplace_back(corner, size);
+      AddSquare(corner, size, &out);
+      return;
+    }
   };
   for (int k = 0; k <= o.pillar_rows; ++k) {  // east-west entries, between pillar columns
     const double wall_lo = l.entry_y[k] - 0.5 * l.entry_w[k], wall_hi = l.entry_y[k] + 0.5 * l.entry_w[k];

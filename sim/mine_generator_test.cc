@@ -69,12 +69,25 @@ double NearestWall(const Vec& p, const std::vector<Segment>& world) {
   return best;
 }
 
+// True if no two segments cross except at shared endpoints.
+::testing::AssertionResult NoCrossings(const std::vector<Segment>& segs) {
+  for (size_t i = 0; i < segs.size(); ++i)
+    for (size_t j = i + 1; j < segs.size(); ++j) {
+      const auto x = SegmentIntersection(segs[i], segs[j]);
+      if (!x) continue;
+      if ((*x - segs[i].a).norm() < 1e-9 || (*x - segs[i].b).norm() < 1e-9) continue;
+      return ::testing::AssertionFailure() << "segments " << i << " and " << j << " cross at " << x->transpose();
+    }
+  return ::testing::AssertionSuccess();
+}
+
 TEST(MineGeneratorTest, PillarsRoomsAndSegmentLengths) {
   MineOptions o;
   o.pillar_rows = 3;
   o.pillar_cols = 5;
   const std::vector<Segment> mine = GenerateRoomAndPillarMine(o);
   for (const Segment& s : mine) ASSERT_LT(s.length(), o.max_segment_length);
+  EXPECT_TRUE(NoCrossings(mine));
   const auto loops = Loops(mine);
   ASSERT_EQ(loops.size(), 1u + 3 * 5);  // boundary + pillars
   // Loop 0 is the boundary; the others pillars, in row-major order.
@@ -233,6 +246,8 @@ TEST(ResearchMineTest, IrregularPillarsCribsAndClearStations) {
   EXPECT_GT(widths.size(), 5u);  // not a regular grid of equal squares
   EXPECT_GT(cribs, 10);
   EXPECT_GT(posts, 5);
+  // Blocks never overlap one another or the walls.
+  EXPECT_TRUE(NoCrossings(mine));
   const auto stations = ResearchMineStations(o, 33);
   ASSERT_EQ(stations.size(), 33u);
   const World world(mine);
