@@ -1,5 +1,6 @@
 // log_tool info, export and render: commands that read a log.
 
+#include <algorithm>
 #include <cstdio>
 #include <iostream>
 
@@ -31,11 +32,33 @@ std::vector<std::string> TakeRepeatedFlag(std::vector<std::string>* args, const 
   return values;
 }
 
+std::vector<std::string> ExpandBareBoolFlags(const std::vector<std::string>& args,
+                                             const std::vector<std::string>& bool_flags) {
+  const auto is_bool_word = [](const std::string& w) {
+    for (const char* b : {"true", "false", "1", "0", "yes", "no", "on", "off"})
+      if (w == b) return true;
+    return false;
+  };
+  std::vector<std::string> out;
+  for (size_t i = 0; i < args.size(); ++i) {
+    bool bare = false;
+    for (const auto& f : bool_flags) {
+      std::string dashed = f;
+      std::replace(dashed.begin(), dashed.end(), '_', '-');
+      if (args[i] == "--" + f || args[i] == "--" + dashed) bare = true;
+    }
+    if (bare && !(i + 1 < args.size() && is_bool_word(args[i + 1]))) out.push_back(args[i] + "=true");
+    else out.push_back(args[i]);
+  }
+  return out;
+}
+
 void RequireOutputPath(const std::string& path, const std::string& flag) {
   if (path.empty()) throw UsageError(flag + " is required (see --help)");
 }
 
-int RunInfoCommand(const std::vector<std::string>& args) {
+int RunInfoCommand(const std::vector<std::string>& raw_args) {
+  const std::vector<std::string> args = ExpandBareBoolFlags(raw_args, {"json"});
   bool json = false;
   std::string json_out;
   ConfigSchema schema("log_tool info",
@@ -69,7 +92,8 @@ int RunInfoCommand(const std::vector<std::string>& args) {
   return 0;
 }
 
-int RunExportCommand(const std::vector<std::string>& args) {
+int RunExportCommand(const std::vector<std::string>& raw_args) {
+  const std::vector<std::string> args = ExpandBareBoolFlags(raw_args, {"valid_only"});
   std::string poses_channel, out, scans_out, scan_channel = "LADAR_SCAN";
   bool valid_only = false;
   ConfigSchema schema("log_tool export",
@@ -124,7 +148,7 @@ int RunExportCommand(const std::vector<std::string>& args) {
 }
 
 int RunRenderCommand(const std::vector<std::string>& raw_args) {
-  std::vector<std::string> args = raw_args;
+  std::vector<std::string> args = ExpandBareBoolFlags(raw_args, {"scans_at_odometry"});
   LogRenderOptions options;
   options.world_paths = TakeRepeatedFlag(&args, "world");
   std::string out;

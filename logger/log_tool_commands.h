@@ -18,6 +18,11 @@ int RunGenerateCommand(const std::vector<std::string>& args);
 // in order (for flags that may repeat, which ConfigSchema does not support).
 std::vector<std::string> TakeRepeatedFlag(std::vector<std::string>* args, const std::string& name);
 
+// Rewrites a bare boolean flag (--json) as --json=true unless the next argument is a
+// boolean word, so `info --json LOG` does not read LOG as the flag's value.
+std::vector<std::string> ExpandBareBoolFlags(const std::vector<std::string>& args,
+                                             const std::vector<std::string>& bool_flags);
+
 // Throws UsageError when `path` is empty, naming the flag.
 void RequireOutputPath(const std::string& path, const std::string& flag);
 

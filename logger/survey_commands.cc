@@ -32,7 +32,10 @@ struct SurveyFlags {
 LadarModel SensorFor(const std::string& sensor, int points) {
   if (sensor == "cyclone") return LadarModel::Cyclone(points > 0 ? points : 2048);
   LadarModel m = LadarModel::Typhoon();
-  if (points > 0) m.num_points = points;
+  if (points > 0) {
+    m.num_points = points;
+    m.angular_resolution = 0.0;  // a full revolution: 2 pi / points
+  }
   return m;
 }
 
@@ -118,7 +121,7 @@ bool HelpOrPrint(const std::vector<std::string>& args) {
 }  // namespace
 
 int RunSurveyCommand(const std::vector<std::string>& raw_args) {
-  std::vector<std::string> args = raw_args;
+  std::vector<std::string> args = ExpandBareBoolFlags(raw_args, {"quiet"});
   const std::vector<std::string> world_paths = TakeRepeatedFlag(&args, "world");
   const std::string summary =
       "Simulates a ladar survey offline (thesis 5.2.1): one scan at each station of a stations CSV,\n"
