@@ -1,0 +1,27 @@
+# Bus tests: each runs inside its own private network namespace on its own port, through
+# private_net.sh (which fails loudly if the namespace cannot be made).
+add_executable(fleet_test bus/fleet_test.cc)
+target_include_directories(fleet_test PRIVATE "${CMAKE_SOURCE_DIR}")
+target_link_libraries(fleet_test PRIVATE minenav_test_support minenav_node GTest::gtest_main)
+target_compile_definitions(fleet_test PRIVATE ${MINENAV_PROCESS_DEFS})
+minenav_warnings(fleet_test)
+set_target_properties(fleet_test PROPERTIES RUNTIME_OUTPUT_DIRECTORY "${CMAKE_BINARY_DIR}/tests")
+add_dependencies(fleet_test vehicle_sim ladar_driver)
+
+set(MINENAV_PRIVATE_NET "${CMAKE_CURRENT_SOURCE_DIR}/bus/private_net.sh")
+# minenav_bus_test(<name> <port> <gtest filter>)
+function(minenav_bus_test name port filter)
+  add_test(NAME ${name}
+    COMMAND "${MINENAV_PRIVATE_NET}" --port ${port} -- $<TARGET_FILE:fleet_test> --gtest_filter=${filter})
+  set_tests_properties(${name} PROPERTIES TIMEOUT 180 LABELS bus)
+endfunction()
+
+minenav_bus_test(bus.lcm_bus_round_trip 7701 BusTest.LcmBusRoundTripTimeoutAndBadMessages)
+minenav_bus_test(bus.fleet_drive_record_replay 7702 BusTest.ScriptedDriveIsRecordedCompletelyAndReplaysIdentically)
+minenav_bus_test(bus.bad_messages 7703 BusTest.BadMessagesAreLoggedCountedAndSurvived)
+# Without the namespace the tests must fail with a clear message, not touch the host network
+# (the output must name private_net.sh; the exit code is then non-zero, which CTest ignores).
+add_test(NAME bus.refuses_host_network COMMAND $<TARGET_FILE:fleet_test> --gtest_filter=BusTest.LcmBusRoundTripTimeoutAndBadMessages)
+set_tests_properties(bus.refuses_host_network PROPERTIES
+  ENVIRONMENT_MODIFICATION "MINENAV_IN_PRIVATE_NET=unset:;LCM_DEFAULT_URL=unset:"
+  PASS_REGULAR_EXPRESSION "must run inside tests/bus/private_net.sh.*FAILED  \\] 1 test" LABELS bus)
