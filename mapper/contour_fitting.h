@@ -1,0 +1,66 @@
+#pragma once
+// Contour fitting (thesis 4.5): with the scan poses fixed, move the contour vertices to
+// minimise the integral error (integral_error.h, EQ 4 for the gradient) of every scan
+// against the contours. Each iteration:
+//   1. remove degenerate (very short) segments, which make the gradient unstable and let
+//      sensor noise into the contour;
+//   2. compute correspondence of every nearby scan against the whole map (nearest wins),
+//      keeping the pieces on the contours being fitted;
+//   3. compute the gradient over all vertex coordinates;
+//   4. line search along the descent direction (the largest vertex move bounded by the
+//      correspondence threshold, EQ 5);
+//   5. update the vertices.
+// Five termination conditions: fewer than 2 segments, small gradient, small step (λ),
+// small vertex change, iteration limit.
+//
+// Beyond the thesis: the descent direction may be preconditioned per vertex by the
+// Gauss-Newton curvature of the metric (a 2x2 block per vertex, damped so directions the
+// data do not constrain, like sliding along a straight wall, stay put). The thesis's plain
+// gradient needs hundreds of iterations when vertices see very different amounts of data;
+// the preconditioned direction converges in a few. Set precondition = false for the
+// thesis's behaviour.
+
+#include <string>
+#include <vector>
+
+#include "mapper/contour_map.h"
+#include "mapper/mapped_scan.h"
+
+namespace minenav::mapper {
+
+struct ContourFittingOptions {
+  // m; correspondence threshold between scans and the contours being fitted.
+  double correspondence_threshold = 0.2;
+  // m; segments shorter than this are merged away before each iteration.
+  double min_segment_length = 0.1;
+  // Iteration limit (termination condition 5).
+  int max_iterations = 30;
+  // m; gradient small: max |∂F/∂vertex| / matched length below this.
+  double gradient_tolerance = 1e-7;
+  // m; line-search resolution (smallest vertex move searched).
+  double step_resolution = 1e-5;
+  // m; largest vertex move in an iteration below this ends the fit.
+  double min_vertex_change = 1e-4;
+  // Precondition the gradient by the per-vertex curvature (see above).
+  bool precondition = true;
+  // Damping of the per-vertex curvature, as a fraction of its trace.
+  double damping = 0.05;
+};
+
+std::string ValidateOptions(const ContourFittingOptions& options);
+
+struct ContourFittingResult {
+  bool converged = false;
+  std::string reason;
+  int iterations = 0;
+  double error_before = 0.0;  // m^3, F over the fitted contours' pieces at the start
+  double error_after = 0.0;   // m^3, same at the end (correspondence recomputed)
+  int vertices_removed = 0;   // by degenerate-segment removal
+  int num_pieces = 0;         // at the end
+};
+
+// Fits the contours `ids` (missing ids are ignored) to `scans`.
+ContourFittingResult FitContours(const std::vector<int>& ids, const std::vector<MappedScan>& scans, ContourMap& map,
+                                 const ContourFittingOptions& options = {});
+
+}  // namespace minenav::mapper

@@ -1,0 +1,65 @@
+#include "mapper/map_evaluation.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "mapper/segment_grid.h"
+
+namespace minenav::mapper {
+
+MapDeviation ContourDeviation(const ContourMap& map, const std::vector<Segment>& truth, double step) {
+  // Index the true walls in a grid of their own (as a one-segment "contour" each).
+  SegmentGrid grid(2.0);
+  for (size_t k = 0; k < truth.size(); ++k) {
+    Contour c;
+    c.id = static_cast<int>(k);
+    c.points = {truth[k].a, truth[k].b};
+    grid.Insert(c);
+  }
+  auto nearest = [&](const Eigen::Vector2d& p) {
+    double best = 1e300;
+    for (double r = 1.0; r <= 64.0 && best > r; r *= 2.0)
+      grid.ForEachNear(p, r, [&](const SegmentRef& ref) {
+        best = std::min(best, PointToSegmentDistance(p, truth[static_cast<size_t>(ref.contour)]));
+      });
+    if (best > 64.0)
+      for (const Segment& s : truth) best = std::min(best, PointToSegmentDistance(p, s));
+    return best;
+  };
+  MapDeviation out;
+  double sum = 0.0;
+  for (const auto& [id, c] : map.contours())
+    for (int k = 0; k < c.NumSegments(); ++k) {
+      const Segment s = c.GetSegment(k);
+      const int n = std::max(1, static_cast<int>(std::ceil(s.length() / step)));
+      for (int i = 0; i < n; ++i) {
+        const double d = nearest(s.a + (static_cast<double>(i) / n) * (s.b - s.a));
+        sum += d;
+        out.max = std::max(out.max, d);
+        ++out.samples;
+      }
+      if (!c.closed && k == c.NumSegments() - 1) {
+        const double d = nearest(s.b);
+        sum += d;
+        out.max = std::max(out.max, d);
+        ++out.samples;
+      }
+    }
+  out.mean = out.samples > 0 ? sum / out.samples : 0.0;
+  return out;
+}
+
+double Coverage(const std::vector<Eigen::Vector2d>& points, const ContourMap& map, double distance) {
+  if (points.empty()) return 0.0;
+  int covered = 0;
+  for (const Eigen::Vector2d& p : points) {
+    bool hit = false;
+    map.grid().ForEachNear(p, distance, [&](const SegmentRef& ref) {
+      if (!hit && PointToSegmentDistance(p, map.Get(ref.contour).GetSegment(ref.segment)) <= distance) hit = true;
+    });
+    covered += hit ? 1 : 0;
+  }
+  return static_cast<double>(covered) / static_cast<double>(points.size());
+}
+
+}  // namespace minenav::mapper
