@@ -62,6 +62,22 @@ inline std::vector<Segment> SmallRoomWorld() {
   return w;
 }
 
+// A loop: corridors 5 m wide around a 12 x 6 m block of pillars, with crib blocks along
+// the outer walls so no corridor is featureless within a short range.
+inline std::vector<Segment> LoopWorld() {
+  std::vector<Segment> w = Rectangle(0, 0, 22, 16);
+  w = Concat(w, Rectangle(5, 5, 17, 11));
+  const double cribs[][2] = {{4, 0.3}, {11, 0.3}, {18, 0.3}, {21.1, 5}, {21.1, 11}, {15, 15.1}, {7, 15.1}, {0.3, 8}};
+  for (const auto& c : cribs) w = Concat(w, Rectangle(c[0], c[1], c[0] + 0.6, c[1] + 0.6));
+  return w;
+}
+
+// Stations around the loop's centre line, counter-clockwise.
+inline std::vector<Pose2> LoopStations() {
+  return {{2.5, 2.5, 0.0},   {8.5, 2.5, 0.0},   {14.5, 2.5, 0.0},  {19.5, 2.5, 1.57}, {19.5, 8.0, 1.57},
+          {19.5, 13.5, 3.14}, {13.5, 13.5, 3.14}, {7.5, 13.5, 3.14}, {2.5, 13.5, -1.57}, {2.5, 8.0, -1.57}};
+}
+
 // The true contours of SmallRoomWorld, oriented with free space on the left: the room
 // counter-clockwise, the pillars clockwise; vertices every `nominal` metres.
 inline ContourMap SmallRoomContours(double nominal = 0.5) {

@@ -1,0 +1,60 @@
+#pragma once
+// Concurrent refinement (thesis 4.7, the thesis's main result): alternately refine every
+// scan pose with the contours fixed (pose_estimation.h) and every contour with the poses
+// fixed (contour_fitting.h) until the total error stops falling. Scans and contours pull
+// each other together; where scans see the same walls from both ends of a loop, the loop
+// closes. Callable after every scan or on demand. The first (fixed) scan anchors the frame.
+// A round that raises the total error is undone and ends the refinement.
+
+#include <string>
+#include <vector>
+
+#include "mapper/contour_fitting.h"
+#include "mapper/contour_map.h"
+#include "mapper/mapped_scan.h"
+#include "mapper/pose_estimation.h"
+#include "mapper/redundant_contours.h"
+
+namespace minenav::mapper {
+
+// Pose options for refinement: poses are already close, so the threshold starts small.
+inline PoseEstimationOptions DefaultRefinementPoseOptions() {
+  PoseEstimationOptions o;
+  o.initial_threshold = 0.5;  // m
+  o.final_threshold = 0.1;    // m
+  o.min_pieces = 10;
+  return o;
+}
+
+struct ConcurrentRefinementOptions {
+  // Pose refinement with the contours fixed.
+  PoseEstimationOptions pose = DefaultRefinementPoseOptions();
+  ContourFittingOptions fitting;
+  // Redundant contours (a wall mapped twice) are removed before every round, so scans at
+  // both ends of a loop match the same contour.
+  bool remove_redundant = true;
+  RedundantContourOptions redundant;
+  // Rounds (poses then contours) at most.
+  int max_rounds = 20;
+  // Stop when a round lowers the total error by less than this fraction.
+  double min_relative_decrease = 1e-3;
+  // m; correspondence threshold used to measure the total error.
+  double evaluation_threshold = 0.2;
+};
+
+std::string ValidateOptions(const ConcurrentRefinementOptions& options);
+
+// Σ over scans of the integral error against the map under `threshold`.
+double TotalError(const std::vector<MappedScan>& scans, const ContourMap& map, double threshold);
+
+struct ConcurrentRefinementResult {
+  bool converged = false;
+  std::string reason;
+  int rounds = 0;                   // rounds kept
+  std::vector<double> total_error;  // m^3, before the first round and after each kept round
+};
+
+ConcurrentRefinementResult RefineConcurrently(std::vector<MappedScan>& scans, ContourMap& map,
+                                              const ConcurrentRefinementOptions& options = {});
+
+}  // namespace minenav::mapper

@@ -1,0 +1,110 @@
+#include "mapper/contour_mapper.h"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+#include <sstream>
+
+#include "mapper/correspondence.h"
+
+namespace minenav::mapper {
+
+std::string ValidateOptions(const ContourMapperOptions& o) {
+  if (std::string why = ValidateOptions(o.preprocessing); !why.empty()) return "preprocessing: " + why;
+  if (std::string why = ValidateOptions(o.pose); !why.empty()) return "pose: " + why;
+  if (std::string why = ValidateOptions(o.expansion); !why.empty()) return "expansion: " + why;
+  if (std::string why = ValidateOptions(o.fitting); !why.empty()) return "fitting: " + why;
+  if (std::string why = ValidateOptions(o.refinement); !why.empty()) return "refinement: " + why;
+  std::ostringstream why;
+  if (!(o.grid_cell_size > 0.0))
+    why << "grid_cell_size must be > 0 m, got " << o.grid_cell_size;
+  else if (o.min_scan_points < 2)
+    why << "min_scan_points must be >= 2, got " << o.min_scan_points;
+  else if (!(o.min_overlap_fraction >= 0.0 && o.min_overlap_fraction <= 1.0))
+    why << "min_overlap_fraction must be in [0, 1], got " << o.min_overlap_fraction;
+  else if (!(o.max_correction_translation > 0.0) || !(o.max_correction_rotation > 0.0))
+    why << "max_correction_translation and max_correction_rotation must be > 0";
+  else if (!(o.max_rms_distance > 0.0))
+    why << "max_rms_distance must be > 0 m, got " << o.max_rms_distance;
+  return why.str();
+}
+
+ContourMapper::ContourMapper(ContourMapperOptions options)
+    : options_(std::move(options)), map_(options_.grid_cell_size) {}
+
+InsertResult ContourMapper::InsertScan(const LadarScan& scan, const Pose2& initial, const InsertOptions& insert) {
+  if (const std::string why = ValidateScan(scan); !why.empty()) {
+    InsertResult out;
+    out.pose = initial;
+    out.reason = "invalid scan: " + why;
+    return out;
+  }
+  return InsertPreprocessed(PreprocessScan(scan, options_.preprocessing), initial, insert);
+}
+
+InsertResult ContourMapper::InsertPreprocessed(PreprocessedScan scan, const Pose2& initial,
+                                               const InsertOptions& insert) {
+  InsertResult out;
+  out.pose = initial;
+  if (!std::isfinite(initial.x) || !std::isfinite(initial.y) || !std::isfinite(initial.theta)) {
+    out.reason = "initial pose is not finite";
+    return out;
+  }
+  if (scan.NumPoints() < options_.min_scan_points) {
+    out.reason = "too few usable points (" + std::to_string(scan.NumPoints()) + " < " +
+                 std::to_string(options_.min_scan_points) + ")";
+    return out;
+  }
+  const bool first = scans_.empty();
+  std::set<int> to_fit;
+  if (!first) {
+    PoseEstimationOptions pose_options = options_.pose;
+    if (insert.initial_threshold > 0.0)
+      pose_options.initial_threshold = std::max(insert.initial_threshold, pose_options.final_threshold);
+    out.estimation = EstimatePose(scan, initial, map_, pose_options);
+    out.pose = out.estimation.pose;
+    const PoseEstimationResult& e = out.estimation;
+    std::ostringstream why;
+    if (e.fit.num_pieces < pose_options.min_pieces)
+      why << "no overlap with the map: " << e.reason;
+    else if (e.fit.MatchedFraction() < options_.min_overlap_fraction)
+      why << "too little overlap with the map (" << 100.0 * e.fit.MatchedFraction() << "% of points match)";
+    else if (TranslationDistance(initial, e.pose) > options_.max_correction_translation ||
+             HeadingDistance(initial, e.pose) > options_.max_correction_rotation)
+      why << "correction too large (" << TranslationDistance(initial, e.pose) << " m, "
+          << RadToDeg(HeadingDistance(initial, e.pose)) << " deg): initial estimate too far off";
+    else if (std::sqrt(e.fit.MeanSquaredDistance()) > options_.max_rms_distance)
+      why << "poor fit (RMS " << std::sqrt(e.fit.MeanSquaredDistance()) << " m)";
+    if (!why.str().empty()) {
+      out.reason = why.str();
+      return out;
+    }
+    // Contours the scan overlaps get refitted with its data.
+    const ScanCorrespondence corr = CorrespondScan(scan, out.pose, map_, options_.fitting.correspondence_threshold);
+    for (const ErrorPiece& p : corr.pieces) to_fit.insert(p.segment.contour);
+  }
+  out.expansion = ExpandMap(scan, out.pose, map_, options_.expansion);
+  for (const int id : out.expansion.Touched()) to_fit.insert(id);
+
+  scans_.push_back({std::move(scan), out.pose, first});
+  out.scan_index = static_cast<int>(scans_.size()) - 1;
+  std::vector<int> ids;
+  for (const int id : to_fit)
+    if (map_.Find(id)) ids.push_back(id);
+  out.fitting = FitContours(ids, scans_, map_, options_.fitting);
+  if (options_.refine_after_each_scan) {
+    Refine();
+    out.pose = scans_.back().pose;
+  }
+  out.accepted = true;
+  std::ostringstream summary;
+  summary << (first ? "first scan (fixed)" : out.estimation.reason) << "; created " << out.expansion.created.size()
+          << ", extended " << out.expansion.extended.size() << ", connected " << out.expansion.connected.size()
+          << " contours";
+  out.reason = summary.str();
+  return out;
+}
+
+ConcurrentRefinementResult ContourMapper::Refine() { return RefineConcurrently(scans_, map_, options_.refinement); }
+
+}  // namespace minenav::mapper

@@ -1,0 +1,77 @@
+#include "mapper/redundant_contours.h"
+
+#include <algorithm>
+#include <vector>
+
+namespace minenav::mapper {
+
+namespace {
+
+// Unit left normal at vertex v (mean of its segments' normals).
+Eigen::Vector2d VertexNormal(const Contour& c, int v) {
+  Eigen::Vector2d sum = Eigen::Vector2d::Zero();
+  const int n = c.NumPoints();
+  auto add = [&](int a, int b) {
+    const Eigen::Vector2d d = c.points[static_cast<size_t>(b)] - c.points[static_cast<size_t>(a)];
+    if (d.norm() > 0.0) sum += Eigen::Vector2d(-d.y(), d.x()).normalized();
+  };
+  if (v > 0 || c.closed) add((v + n - 1) % n, v);
+  if (v < n - 1 || c.closed) add(v, (v + 1) % n);
+  return sum.norm() > 0.0 ? Eigen::Vector2d(sum.normalized()) : sum;
+}
+
+}  // namespace
+
+int RemoveRedundantContours(ContourMap& map, const RedundantContourOptions& o) {
+  int removed = 0;
+  std::vector<int> ids = map.Ids();
+  std::sort(ids.rbegin(), ids.rend());  // newest first
+  for (const int id : ids) {
+    const Contour* c = map.Find(id);
+    if (!c) continue;
+    const int n = c->NumPoints();
+    std::vector<bool> redundant(static_cast<size_t>(n), false);
+    int count = 0;
+    for (int v = 0; v < n; ++v) {
+      const Eigen::Vector2d& p = c->points[static_cast<size_t>(v)];
+      const Eigen::Vector2d normal = VertexNormal(*c, v);
+      bool hit = false;
+      map.grid().ForEachNear(p, o.distance, [&](const SegmentRef& ref) {
+        if (hit || ref.contour >= id) return;  // only older contours
+        const Segment s = map.Get(ref.contour).GetSegment(ref.segment);
+        const Eigen::Vector2d d = s.b - s.a;
+        if (d.norm() <= 0.0) return;
+        const Eigen::Vector2d sn = Eigen::Vector2d(-d.y(), d.x()).normalized();
+        if (sn.dot(normal) < o.min_alignment) return;
+        if (PointToSegmentDistance(p, s) <= o.distance) hit = true;
+      });
+      redundant[static_cast<size_t>(v)] = hit;
+      count += hit ? 1 : 0;
+    }
+    if (count == 0) continue;
+    removed += count;
+    // Keep the maximal runs of non-redundant vertices as contours of their own.
+    std::vector<Eigen::Vector2d> pts = c->points;
+    const bool closed = c->closed;
+    map.Remove(id);
+    if (count == n) continue;
+    int start = 0;
+    if (closed) {  // start the walk at a redundant vertex so no run wraps around
+      while (!redundant[static_cast<size_t>(start)]) ++start;
+      std::rotate(pts.begin(), pts.begin() + start, pts.end());
+      std::rotate(redundant.begin(), redundant.begin() + start, redundant.end());
+    }
+    std::vector<Eigen::Vector2d> run;
+    for (int v = 0; v <= n; ++v) {
+      if (v < n && !redundant[static_cast<size_t>(v)]) {
+        run.push_back(pts[static_cast<size_t>(v)]);
+        continue;
+      }
+      if (run.size() >= 2) map.Create(run);
+      run.clear();
+    }
+  }
+  return removed;
+}
+
+}  // namespace minenav::mapper

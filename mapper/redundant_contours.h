@@ -1,0 +1,25 @@
+#pragma once
+// Removal of redundant contours (thesis 7.2.4, "some of this is best fixed by removing
+// redundant contours"). When a wall is mapped twice, e.g. by scans at both ends of a loop
+// whose poses drifted apart, the two contours lie close together and face the same way.
+// Each scan then matches its own copy (nearest wins) and concurrent refinement can never
+// pull the loop together. This removes the vertices of the newer contour (higher id) that
+// lie within `distance` of a segment of an older one facing the same way, splitting the
+// newer contour around them; the scans that built it then correspond to the older one.
+
+#include "mapper/contour_map.h"
+
+namespace minenav::mapper {
+
+struct RedundantContourOptions {
+  // m; a vertex this close to another contour's segment may be redundant. Larger than the
+  // pose drift to be closed, smaller than the gap between distinct same-facing walls.
+  double distance = 0.4;
+  // Cosine of the largest angle between the two contours' normals (same facing).
+  double min_alignment = 0.8;
+};
+
+// Returns the number of vertices removed.
+int RemoveRedundantContours(ContourMap& map, const RedundantContourOptions& options = {});
+
+}  // namespace minenav::mapper
