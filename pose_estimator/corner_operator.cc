@@ -74,6 +74,12 @@ std::vector<CornerCandidate> ApplyCornerOperator(const std::vector<Eigen::Vector
           // Re-orient the arms from the vertex itself, which may lie off the centre point.
           c.arm_before = Oriented(fl, vertex);
           c.arm_after = Oriented(fr, vertex);
+          const Eigen::Vector2d ray = vertex.normalized();
+          const double min_sin = std::sin(options.min_arm_to_ray_angle);
+          if (std::abs(ray.x() * c.arm_before.y() - ray.y() * c.arm_before.x()) < min_sin ||
+              std::abs(ray.x() * c.arm_after.y() - ray.y() * c.arm_after.x()) < min_sin) {
+            candidate = false;
+          }
           c.num_points = fl.count + fr.count - 1;
           c.fit_rms = std::sqrt(score);
         }
@@ -91,7 +97,17 @@ std::vector<CornerCandidate> ApplyCornerOperator(const std::vector<Eigen::Vector
     }
   }
   if (in_run) corners.push_back(best);
-  return corners;
+  // Noise can split one corner's run of candidates in two: merge close neighbours.
+  std::vector<CornerCandidate> merged;
+  for (const CornerCandidate& c : corners) {
+    if (!merged.empty() &&
+        (merged.back().vertex - c.vertex).norm() < options.min_corner_separation * arm) {
+      if (c.fit_rms < merged.back().fit_rms) merged.back() = c;
+      continue;
+    }
+    merged.push_back(c);
+  }
+  return merged;
 }
 
 }  // namespace minenav

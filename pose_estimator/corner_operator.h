@@ -19,6 +19,12 @@ struct CornerOperatorOptions {
   double min_corner_angle = DegToRad(60.0);   // rad, interval of accepted angles between
   double max_corner_angle = DegToRad(120.0);  // rad, the arms ("around 90 degrees")
   double max_arm_rms = 0.15;                  // m, straightness of each arm
+  // rad: an arm closer than this to the ray from the sensor through the vertex is seen at
+  // a grazing angle or is a streak of mixed pixels at an occlusion (2.2): no corner there.
+  // Points are in the sensor frame, so the ray is the vertex's direction.
+  double min_arm_to_ray_angle = DegToRad(15.0);
+  // m, as a fraction of arm_length: closer corners are one corner (the better fit wins)
+  double min_corner_separation = 0.5;
 };
 
 struct CornerCandidate {

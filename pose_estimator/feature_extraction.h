@@ -29,7 +29,7 @@ struct ExtractionOptions {
   double corner_gap = 0.15;           // m, points this close to a corner stay out of line fits
   int min_line_points = 8;            // points a line needs (after dropping outliers)
   double min_line_length = 0.5;       // m, shorter lines are not features
-  double max_line_rms = 0.15;         // m, RMS of the line fit after dropping outliers
+  double max_line_rms = 0.13;         // m, RMS of the line fit after dropping outliers (~1.3 sigma)
   double min_inlier_fraction = 0.7;   // 1, of the span's points that must lie on the line
   bool occlusion_corners = true;      // report occlusion corners at occluding piece ends
 };

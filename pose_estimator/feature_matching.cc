@@ -102,6 +102,7 @@ bool UnaryConsistent(const Feature& s, const Feature& m, const MatchingOptions& 
   // Unary properties 3 and 4.
   if (AngleDiff(s.orientation, m.orientation) > o.angerr) return false;
   if (std::abs(s.distance - m.distance) > o.poserr + o.disterr) return false;
+  if (s.length > m.length + o.disterr) return false;
   return true;
 }
 

@@ -4,7 +4,8 @@
 //     corner bearing within angerr, corner range within poserr, the angular extents of a
 //     sensed and a model line overlap allowing a rotation of angerr.
 //   Unary properties: concave angle within concerr, bisector orientation within angerr,
-//     line orientation within angerr, line distance within poserr + disterr.
+//     line orientation within angerr, line distance within poserr + disterr. (Ours: a
+//     sensed line is not longer than the visible model piece plus disterr.)
 //   Binary constraints between two pairs (independent of the pose): corner-corner
 //     distances agree within bindisterr, line-line orientation differences within
 //     binangerr, a corner lies on the same side of and as far from a line within

@@ -39,7 +39,7 @@ Eigen::Matrix2d FeatureInformation(const Feature& sensed, const MinimizationOpti
     cov << v, 0.0, 0.0, v;
   } else {
     const double len = std::max(sensed.length, 0.1);
-    const double v_phi = std::max(12.0 * s2 / (n * len * len), o.min_variance);
+    const double v_phi = std::max(12.0 * s2 / (n * len * len), o.min_angle_variance);
     const double v_off = std::max(s2 / n, o.min_variance);
     // r = n . c for the centroid c; turning the normal by d_phi moves r by (t . c) d_phi.
     const Eigen::Vector2d mid = 0.5 * (sensed.start + sensed.end);
@@ -143,17 +143,30 @@ MinimizationResult MinimizeFeatureError(const std::vector<Correspondence>& input
     for (const Correspondence& c : pairs) w.push_back(FeatureInformation(c.sensed, o));
     s = GaussNewton(pairs, w, initial, o);
     result.iterations += s.iterations;
-    // Drop the worst mismatch, if any, and solve again.
+    // Drop the worst mismatch, if any, and solve again. A mismatch with many points can
+    // pull the estimate onto itself, so each pair is judged at the pose the others give
+    // (leave one out), where they pin the pose down on their own.
     size_t worst = 0;
     double worst_ratio = 0.0;
+    const double min_information = 1.0 / (o.max_std * o.max_std);
     for (size_t i = 0; i < pairs.size(); ++i) {
-      const double ratio = GateRatio(pairs[i], s.pose, o);
+      Pose2 judge = s.pose;
+      if (pairs.size() > 2) {
+        std::vector<Correspondence> others = pairs;
+        std::vector<Eigen::Matrix2d> wo = w;
+        others.erase(others.begin() + static_cast<std::ptrdiff_t>(i));
+        wo.erase(wo.begin() + static_cast<std::ptrdiff_t>(i));
+        const Solve loo = GaussNewton(others, wo, s.pose, o);
+        Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(loo.information);
+        if (eig.eigenvalues().minCoeff() >= min_information) judge = loo.pose;
+      }
+      const double ratio = GateRatio(pairs[i], judge, o);
       if (ratio > worst_ratio) {
         worst_ratio = ratio;
         worst = i;
       }
     }
-    if (worst_ratio <= 1.0 || dropped >= o.max_dropped || pairs.size() <= 1) break;
+    if (worst_ratio <= 1.0 || static_cast<int>(pairs.size()) <= o.min_kept) break;
     pairs.erase(pairs.begin() + static_cast<std::ptrdiff_t>(worst));
     ++dropped;
   }

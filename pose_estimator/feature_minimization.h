@@ -35,16 +35,21 @@ struct MinimizationOptions {
   double step_tolerance = 1e-6;         // m and rad: converged when a step is smaller
   double point_sigma = 0.1;             // m, range noise per scan point (weights)
   double corner_variance_factor = 8.0;  // 1, corner variance = this * sigma^2 / points
-  double min_variance = 1e-4;           // m^2 (and rad^2 for phi), floor per feature axis
+  // Floors per feature: a fit of many points is only as good as the wall is straight and
+  // the map is surveyed.
+  double min_variance = 4e-4;           // m^2 (2 cm) for corner axes and line distances
+  double min_angle_variance = 7.6e-5;   // rad^2 (0.5 deg) for line orientations
   double max_std = 0.5;                 // m (rad x 1 m for heading): beyond this a
                                         // direction counts as unobservable
   double unobservable_variance = 1e6;   // m^2, put into the covariance along such directions
   // Gates after convergence: a pair beyond them is a mismatch; the worst is dropped and
   // the minimisation repeated.
-  double max_corner_error = 0.3;        // m
-  double max_line_distance_error = 0.3; // m
-  double max_line_angle_error = DegToRad(3.0);  // rad
-  int max_dropped = 3;
+  // The matcher's tolerances (bindisterr 0.5 m) let near-alternatives through, e.g. a
+  // column's foot 0.3 m from the corner it was taken for.
+  double max_corner_error = 0.15;        // m
+  double max_line_distance_error = 0.15; // m
+  double max_line_angle_error = DegToRad(2.0);  // rad
+  int min_kept = 2;  // correspondences are dropped one at a time while more than this remain
 };
 
 struct Correspondence {

@@ -128,10 +128,11 @@ TEST(FeatureMinimization, NoCorrespondencesIsNotConverged) {
 
 TEST(FeatureMinimization, WeightsFollowThePointsBehindAFeature) {
   MinimizationOptions o;
-  Feature few = Line({1, -2}, {1, 2}, 10), many = Line({1, -2}, {1, 2}, 50);
+  Feature few = Line({1, -2}, {1, 2}, 5), many = Line({1, -2}, {1, 2}, 20);
   const Eigen::Matrix2d wf = FeatureInformation(few, o), wm = FeatureInformation(many, o);
-  EXPECT_NEAR(wm(0, 0) / wf(0, 0), 5.0, 1e-9);
-  EXPECT_NEAR(wm(1, 1) / wf(1, 1), 5.0, 1e-9);
+  // Above the variance floors, information grows with the points.
+  EXPECT_NEAR(wm(0, 0) / wf(0, 0), 4.0, 1e-9);
+  EXPECT_NEAR(wm(1, 1) / wf(1, 1), 4.0, 1e-9);
 }
 
 }  // namespace
