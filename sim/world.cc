@@ -167,21 +167,41 @@ CutResult World::CutRegion(const std::vector<Eigen::Vector2d>& polygon, const Ei
   std::vector<Segment> face;
   for (const Segment& e : edges) {
     bool dropped = false;
-    const auto pieces = KeptPieces(e, SplitParameters(e, before),
-                                   [&](const Eigen::Vector2d& m) { return CrossingParity(m) != free_parity; },
-                                   &dropped);
+    // A piece lying on an existing wall (a cut edge flush with it) adds nothing.
+    auto on_wall = [&](const Eigen::Vector2d& m) {
+      for (const Segment& s : before)
+        if (PointToSegmentDistance(m, s) < 1e-9) return true;
+      return false;
+    };
+    const auto pieces = KeptPieces(
+        e, SplitParameters(e, before),
+        [&](const Eigen::Vector2d& m) { return !on_wall(m) && CrossingParity(m) != free_parity; }, &dropped);
     for (const Segment& p : pieces) {
       face.push_back(p);
       result.new_face_length += p.length();
     }
   }
 
-  // Then the walls inside the polygon go.
+  // Then the walls inside the polygon go. A wall piece lying on the polygon's outline stays
+  // if the side outside the polygon is solid (it still bounds the coal).
+  auto keep_wall = [&](const Eigen::Vector2d& m, const Segment& s) {
+    bool on_outline = false;
+    for (const Segment& e : edges) on_outline = on_outline || PointToSegmentDistance(m, e) < 1e-9;
+    if (!on_outline) return !InsidePolygon(m, polygon);
+    const Eigen::Vector2d d = (s.b - s.a).normalized();
+    const Eigen::Vector2d n(-d.y(), d.x());
+    for (double side : {1e-6, -1e-6}) {
+      const Eigen::Vector2d probe = m + side * n;
+      if (!InsidePolygon(probe, polygon)) return CrossingParity(probe) != free_parity;
+    }
+    return false;  // both sides inside: cut away
+  };
   std::vector<std::pair<int, std::vector<Segment>>> replaced;
   for (const auto& [id, s] : segments_) {
     bool dropped = false;
+    const Segment seg = s;
     auto pieces = KeptPieces(s, SplitParameters(s, edges),
-                             [&](const Eigen::Vector2d& m) { return !InsidePolygon(m, polygon); }, &dropped);
+                             [&](const Eigen::Vector2d& m) { return keep_wall(m, seg); }, &dropped);
     if (dropped) replaced.emplace_back(id, std::move(pieces));
   }
   for (auto& [id, pieces] : replaced) {

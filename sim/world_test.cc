@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include "common/angle.h"
 #include "common/file_io.h"
 
 namespace minenav {
@@ -115,6 +116,25 @@ TEST(WorldTest, CutThroughAPillarCorner) {
   EXPECT_NEAR(hit->range, 7.0, 1e-12);  // meets the new face at x = 12
   const auto hit2 = CastRay(Vec(5, 13), 0.0, w.Segments(), 100.0);
   EXPECT_NEAR(hit2->range, 5.0, 1e-12);  // the old face above the cut
+}
+
+TEST(WorldTest, CutFlushWithAFaceAddsNoDuplicateWall) {
+  World w = RoomWithPillar();
+  // The box [10, 12] x [10, 14] inside the pillar shares its south-west corner: its west and
+  // south edges lie on the pillar's faces (which go, the room being on their other side), its
+  // east and north edges become the new face.
+  const CutResult cut = w.CutRegion({Vec(10, 10), Vec(12, 10), Vec(12, 14), Vec(10, 14)}, Vec(5, 5));
+  EXPECT_NEAR(cut.new_face_length, 2 + 4, 1e-12);  // east and north edges of the box only
+  const auto hit = CastRay(Vec(5, 12), 0.0, w.Segments(), 100.0);
+  ASSERT_TRUE(hit.has_value());
+  EXPECT_NEAR(hit->range, 7.0, 1e-12);
+  const auto up = CastRay(Vec(11, 5), kPi / 2, w.Segments(), 100.0);
+  EXPECT_NEAR(up->range, 9.0, 1e-12);  // through the cut to the new north face at y = 14
+  // The old faces stay where they still bound coal, and nowhere is a wall doubled.
+  EXPECT_NEAR(CastRay(Vec(5, 15), 0.0, w.Segments(), 100.0)->range, 5.0, 1e-12);
+  double total = 0.0;
+  for (const Segment& s : w.Segments()) total += s.length();
+  EXPECT_NEAR(total, 120 + 40 - 2 - 4 + 2 + 4, 1e-9);
 }
 
 }  // namespace
