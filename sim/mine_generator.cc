@@ -48,7 +48,7 @@ void AddSquare(const Vec& lo, double size, std::vector<Segment>* out) {
 // `count` poses evenly spaced along a polyline (first at its start, last at its end),
 // heading along the polyline plus U[-variation, variation].
 std::vector<Station> StationsAlong(const std::vector<Vec>& path, int count, double variation, uint64_t seed,
-                                   bool closed) {
+                                   bool closed, double max_spacing = 0.0) {
   std::vector<Vec> pts = path;
   if (closed) pts.push_back(path.front());
   std::vector<double> cum{0.0};
@@ -59,7 +59,8 @@ std::vector<Station> StationsAlong(const std::vector<Vec>& path, int count, doub
   std::vector<Station> out;
   if (count <= 0 || pts.size() < 2) return out;
   // Open path: ends included. Closed loop: `count` equal gaps, the last before the start.
-  const double spacing = closed ? total / count : (count > 1 ? total / (count - 1) : 0.0);
+  double spacing = closed ? total / count : (count > 1 ? total / (count - 1) : 0.0);
+  if (max_spacing > 0.0 && !closed) spacing = std::min(spacing, max_spacing);
   size_t seg = 1;
   for (int k = 0; k < count; ++k) {
     const double s = std::min(total, k * spacing);
@@ -134,14 +135,14 @@ std::vector<Segment> GenerateRoomAndPillarMine(const MineOptions& o) {
   return out;
 }
 
-std::vector<Station> MineSurveyStations(const MineOptions& o, int count, double heading_variation) {
+std::vector<Station> MineSurveyStations(const MineOptions& o, int count, double heading_variation, double spacing) {
   Require(ValidateMineOptions(o));
   const double pitch = o.pillar_size + o.room_width;
   const Vec size = MinePanelSize(o);
   std::vector<double> ys;
   for (int k = 0; k <= o.pillar_rows; ++k) ys.push_back(0.5 * o.room_width + k * pitch);
   return StationsAlong(Serpentine(ys, 0.5 * o.room_width, size.x() - 0.5 * o.room_width), count,
-                       heading_variation, o.seed, false);
+                       heading_variation, o.seed, false, spacing);
 }
 
 std::vector<Station> LoopStations(const MineOptions& o, int count, int pillar_row, int pillar_col,
@@ -298,12 +299,13 @@ std::vector<Segment> GenerateResearchMine(const ResearchMineOptions& o) {
   return out;
 }
 
-std::vector<Station> ResearchMineStations(const ResearchMineOptions& o, int count, double heading_variation) {
+std::vector<Station> ResearchMineStations(const ResearchMineOptions& o, int count, double heading_variation,
+                                          double spacing) {
   Require(ValidateResearchMineOptions(o));
   std::mt19937_64 rng(o.seed);
   const ResearchLayout l = Layout(o, rng);  // same draws as GenerateResearchMine's first ones
   return StationsAlong(Serpentine(l.entry_y, l.crosscut_x.front(), l.crosscut_x.back()), count,
-                       heading_variation, o.seed, false);
+                       heading_variation, o.seed, false, spacing);
 }
 
 }  // namespace minenav

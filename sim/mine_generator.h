@@ -53,9 +53,11 @@ Eigen::Vector2d MinePanelSize(const MineOptions& options);
 // panel (east along the first entry, north through the end crosscut, west along the next,
 // ...), evenly spaced along that path so successive scans overlap (about 4.8 m apart for
 // the default 2 x 3 panel and 42 stations). Heading = direction of travel plus a seeded
-// uniform offset in [-heading_variation, heading_variation] rad.
+// uniform offset in [-heading_variation, heading_variation] rad. spacing > 0 (m) caps the
+// distance between consecutive stations: in a large panel the survey then covers only the
+// first part of the serpentine instead of spreading `count` stations thinly over all of it.
 std::vector<Station> MineSurveyStations(const MineOptions& options, int count = 42,
-                                        double heading_variation = 0.6);
+                                        double heading_variation = 0.6, double spacing = 0.0);
 
 // `count` stations evenly spaced around the pillar (row, col), on the centrelines of the
 // four rooms around it, counter-clockwise, for loop-closure tests: the last station is
@@ -89,6 +91,6 @@ std::vector<Segment> GenerateResearchMine(const ResearchMineOptions& options);
 
 // Serpentine survey like MineSurveyStations, on the (irregular) entry centrelines.
 std::vector<Station> ResearchMineStations(const ResearchMineOptions& options, int count = 33,
-                                          double heading_variation = 0.6);
+                                          double heading_variation = 0.6, double spacing = 0.0);
 
 }  // namespace minenav

@@ -205,6 +205,21 @@ TEST(MineGeneratorTest, SurveyStationsSerpentineInFreeSpace) {
   EXPECT_NEAR(stations.back().pose.y, 2 * 18.0 + 3.0, 1e-9);
 }
 
+TEST(MineGeneratorTest, SurveySpacingCapInALargePanel) {
+  MineOptions o;
+  o.pillar_rows = 8;
+  o.pillar_cols = 10;
+  const auto spread = MineSurveyStations(o, 42);
+  const auto dense = MineSurveyStations(o, 42, 0.6, 4.0);
+  ASSERT_EQ(dense.size(), 42u);
+  EXPECT_GT((spread[1].pose.translation() - spread[0].pose.translation()).norm(), 30.0);
+  for (size_t i = 1; i < dense.size(); ++i)
+    EXPECT_LE((dense[i].pose.translation() - dense[i - 1].pose.translation()).norm(), 4.0 + 1e-9);
+  EXPECT_NEAR(dense.back().pose.x, 3.0 + 41 * 4.0, 1e-9);  // 164 m along the first 174 m entry
+  // A cap larger than the even spread changes nothing.
+  EXPECT_EQ(MineSurveyStations(MineOptions(), 42, 0.6, 50.0)[7].pose.x, MineSurveyStations(MineOptions(), 42)[7].pose.x);
+}
+
 TEST(MineGeneratorTest, LoopStationsCloseAroundOnePillar) {
   MineOptions o;
   const auto stations = LoopStations(o, 16, 1, 1);
