@@ -86,7 +86,8 @@ std::optional<RayHit> SegmentGrid::CastRay(const Eigen::Vector2d& origin, double
 
 std::optional<RayHit> SegmentGrid::CastRayDir(const Eigen::Vector2d& origin, const Eigen::Vector2d& dir,
                                               double max_range) const {
-  if (segments_.empty() || !(max_range >= 0.0)) return std::nullopt;
+  if (segments_.empty() || !(max_range >= 0.0) || !origin.allFinite() || !dir.allFinite() || dir.isZero())
+    return std::nullopt;
   constexpr double kInf = std::numeric_limits<double>::infinity();
   // Clip the ray against the grid's box.
   const Eigen::Vector2d box_lo = origin_, box_hi = origin_ + cell_ * Eigen::Vector2d(nx_, ny_);

@@ -94,6 +94,11 @@ TEST(SegmentGridTest, EmptyWorldAndOutsideRays) {
   EXPECT_TRUE(one.CastRay(Eigen::Vector2d(0, 0), 0.0, 10.0).has_value());  // exactly at max range
   EXPECT_FALSE(one.CastRay(Eigen::Vector2d(0, 0), kPi, 100.0).has_value());
   EXPECT_FALSE(one.CastRay(Eigen::Vector2d(20, 0), 0.0, 100.0).has_value());
+  // Non-finite input: no hit, no undefined behaviour.
+  EXPECT_FALSE(one.CastRay(Eigen::Vector2d(NAN, 0), 0.0, 100.0).has_value());
+  EXPECT_FALSE(one.CastRay(Eigen::Vector2d(0, 0), INFINITY, 100.0).has_value());
+  EXPECT_FALSE(one.CastRay(Eigen::Vector2d(0, 0), 0.0, NAN).has_value());
+  EXPECT_FALSE(one.CastRayDir(Eigen::Vector2d(0, 0), Eigen::Vector2d(0, 0), 100.0).has_value());
 }
 
 }  // namespace
