@@ -25,7 +25,9 @@ namespace minenav {
 // A scan together with what the simulator knows about each reading (for tests and tools).
 struct SimulatedScan {
   LadarScan scan;
-  std::vector<double> true_range;   // m, exact range of the central ray; 0 if nothing within max_range
+  // m, exact range of the central ray; 0 if it hit nothing within the cast range
+  // (max_range + 6 range_sigma + range_resolution, so noise can bring a farther wall in).
+  std::vector<double> true_range;
   std::vector<int> hit_segment;     // index of the segment the central ray hit, -1 if none
   std::vector<uint8_t> mixed;       // 1 where the reading is a mixed pixel
   int num_mixed = 0;
