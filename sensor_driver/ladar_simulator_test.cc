@@ -168,6 +168,33 @@ TEST(LadarSimulatorTest, NoiseStandardDeviationMatchesSigma) {
   EXPECT_NEAR(sd, 0.05, 0.005);  // within 10%
 }
 
+TEST(LadarSimulatorTest, FullTyphoonModelErrorIsNoisePlusQuantisation) {
+  // Noise sigma and rounding to a step q add up to an rms range error of
+  // sqrt(sigma^2 + q^2 / 12) away from mixed pixels; mixed pixels are few.
+  const LadarModel m = LadarModel::Typhoon();
+  const std::vector<Segment> world = Mine();
+  const SegmentGrid grid(world);
+  const LadarSimulator sim(m, 21);
+  double sum2 = 0.0;
+  int n = 0, mixed = 0, valid = 0;
+  for (const Station& st : MineSurveyStations(MineOptions(), 42)) {
+    const SimulatedScan s = sim.SimulateDetailed(grid, st.pose, Pose2(), 0, 0);
+    mixed += s.num_mixed;
+    for (size_t i = 0; i < s.scan.ranges.size(); ++i) {
+      if (!s.scan.IsValid(i)) continue;
+      ++valid;
+      if (s.mixed[i]) continue;
+      const double e = s.scan.ranges[i] - s.true_range[i];
+      sum2 += e * e;
+      ++n;
+    }
+  }
+  const double expected = std::sqrt(m.range_sigma * m.range_sigma + m.range_resolution * m.range_resolution / 12.0);
+  EXPECT_NEAR(std::sqrt(sum2 / n), expected, 0.03 * expected);
+  EXPECT_GT(mixed, 0);
+  EXPECT_LT(mixed, valid / 50);  // a few per cent at most
+}
+
 TEST(LadarSimulatorTest, MixedPixelsOnlyAtOcclusionEdges) {
   LadarModel m = LadarModel::Cyclone(2048).Ideal();
   m.beam_divergence = 0.004;
