@@ -20,3 +20,9 @@ minenav_test(NAME feature_test NO_LCM
     feature_minimization_test.cc
     feature_pose_estimator_test.cc
   LIBS minenav_feature)
+
+# The process (thin node over minenav_feature).
+if(TARGET minenav_node)
+  minenav_executable(feature_pose_estimator feature_pose_estimator_main.cc)
+  target_link_libraries(feature_pose_estimator PRIVATE minenav_feature minenav_node)
+endif()

@@ -208,6 +208,17 @@ MinimizationResult MinimizeFeatureError(const std::vector<Correspondence>& input
       cov += v * v.transpose() / l;
     }
   }
+  // When the features disagree more than their weights say (fractal mine walls, a map a
+  // little off), scale the covariance by the a-posteriori variance factor so it stays
+  // honest; never below the a-priori one.
+  double chi2 = 0.0;
+  for (const Correspondence& c : pairs) {
+    const FeatureResidual r = ComputeResidual(c.sensed, c.model, s.pose);
+    chi2 += r.f.dot(FeatureInformation(c.sensed, o) * r.f);
+  }
+  const int dof = 2 * static_cast<int>(pairs.size()) - 3;
+  result.variance_factor = dof > 0 ? std::max(1.0, chi2 / dof) : 1.0;
+  if (weak.empty()) cov *= result.variance_factor;
   result.covariance = cov;
   result.min_std_direction = worst_std;
   if (!weak.empty()) {

@@ -18,7 +18,8 @@
 // each fit: a line of n points over length L with per-point noise sigma has
 // var(offset) = sigma^2 / n and var(phi) = 12 sigma^2 / (n L^2); a corner gets
 // var = corner_variance_factor * sigma^2 / n per axis. The covariance of the result is
-// (J^T W J)^-1. A direction the features do not constrain (only parallel walls, one
+// (J^T W J)^-1, scaled up by chi^2 / dof when the residuals are larger than the weights
+// expect. A direction the features do not constrain (only parallel walls, one
 // corner) shows up as an eigenvalue of J^T W J near zero: the result is then not
 // converged, and the covariance carries unobservable_variance along that direction.
 #include <Eigen/Core>
@@ -66,6 +67,7 @@ struct MinimizationResult {
   int used = 0;                // correspondences kept
   double rms_distance = 0.0;   // m, RMS of corner and line distance errors at the end
   double min_std_direction = 0.0;  // informative only: largest std over directions (m)
+  double variance_factor = 1.0;    // chi^2 / dof at the end (>= 1), applied to the covariance
 };
 
 // The residual vector of one correspondence (EQ 7) and its Jacobian with respect to the
