@@ -33,7 +33,7 @@ double ChooseCellSize(const std::vector<Segment>& segments) {
   for (const Segment& s : segments) lengths.push_back(s.length());
   auto mid = lengths.begin() + static_cast<std::ptrdiff_t>(lengths.size() / 2);
   std::nth_element(lengths.begin(), mid, lengths.end());
-  return std::clamp(*mid, 0.1, 1.0);
+  return std::clamp(0.5 * *mid, 0.03, 1.0);
 }
 
 std::unique_ptr<CorrespondenceSearch> MakeCorrespondenceSearch(std::vector<Segment> segments,
@@ -56,16 +56,33 @@ void FindCorrespondences(const CorrespondenceSearch& search, const std::vector<E
   for (size_t i = 0; i < points.size(); ++i) (*out)[i] = search.Nearest(points[i], max_distance);
 }
 
+std::vector<uint8_t> ComputeOpenEnds(const std::vector<Segment>& segments) {
+  // Count how many segment ends sit on each exact point; an end shared by no other is open.
+  std::vector<std::pair<std::pair<double, double>, int>> ends;  // (point, 2 * segment + side)
+  ends.reserve(2 * segments.size());
+  for (size_t i = 0; i < segments.size(); ++i) {
+    ends.push_back({{segments[i].a.x(), segments[i].a.y()}, static_cast<int>(2 * i)});
+    ends.push_back({{segments[i].b.x(), segments[i].b.y()}, static_cast<int>(2 * i + 1)});
+  }
+  std::sort(ends.begin(), ends.end());
+  std::vector<uint8_t> flags(segments.size(), 0);
+  for (size_t k = 0; k < ends.size();) {
+    size_t j = k;
+    while (j < ends.size() && ends[j].first == ends[k].first) ++j;
+    if (j - k == 1) {
+      const int code = ends[k].second;
+      flags[static_cast<size_t>(code / 2)] |= static_cast<uint8_t>(code % 2 ? 2 : 1);
+    }
+    k = j;
+  }
+  return flags;
+}
+
 std::vector<PreparedSegment> PrepareSegments(const std::vector<Segment>& segments) {
   std::vector<PreparedSegment> out;
   out.reserve(segments.size());
   for (const Segment& s : segments) out.emplace_back(s);
   return out;
-}
-
-SegmentMatch MakeMatch(const Eigen::Vector2d& p, const std::vector<Segment>& segments, int index) {
-  const SegmentProjection proj = ProjectOntoSegment(p, segments[static_cast<size_t>(index)]);
-  return {index, proj.distance, proj.region, proj.point};
 }
 
 SegmentMatch BruteForceCorrespondence::Nearest(const Eigen::Vector2d& p, double max_distance) const {
@@ -80,7 +97,7 @@ SegmentMatch BruteForceCorrespondence::Nearest(const Eigen::Vector2d& p, double 
     }
   }
   if (best < 0 || best_d2 > max_distance * max_distance) return SegmentMatch{};
-  return MakeMatch(p, segments_, best);
+  return MakeMatch(p, prepared_[static_cast<size_t>(best)], best, best_d2);
 }
 
 }  // namespace minenav

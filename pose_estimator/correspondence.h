@@ -12,6 +12,8 @@
 //                 list of possibly nearest segments; one cell per point  lookup_table_correspondence.h
 
 #include <Eigen/Core>
+#include <cmath>
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -29,14 +31,32 @@ struct SegmentMatch {
   bool matched() const { return segment >= 0; }
 };
 
+// Which segment endpoints end a polyline (no other segment starts or ends there): bit 0 for
+// a, bit 1 for b. A point nearest to such an end lies beyond the mapped surface (an
+// unmapped wall, the edge of another scan's view); pairing it with the end would pull the
+// estimate along the wall, so the matchers can skip those pairs (reject_open_ends).
+std::vector<uint8_t> ComputeOpenEnds(const std::vector<Segment>& segments);
+inline bool IsOpenEnd(const std::vector<uint8_t>& open_ends, int segment, SegmentRegion region) {
+  const uint8_t f = open_ends[static_cast<size_t>(segment)];
+  return (region == SegmentRegion::kStartPoint && (f & 1)) || (region == SegmentRegion::kEndPoint && (f & 2));
+}
+
 class CorrespondenceSearch {
  public:
   virtual ~CorrespondenceSearch() = default;
+  // ComputeOpenEnds(segments()), computed once.
+  const std::vector<uint8_t>& open_ends() const {
+    if (open_ends_.size() != segments().size()) open_ends_ = ComputeOpenEnds(segments());
+    return open_ends_;
+  }
   // The nearest segment to p (map frame) no farther than max_distance (m). Ties go to the
   // lower segment index so that all implementations agree exactly.
   virtual SegmentMatch Nearest(const Eigen::Vector2d& p, double max_distance) const = 0;
   virtual const std::vector<Segment>& segments() const = 0;
   virtual const char* name() const = 0;
+
+ private:
+  mutable std::vector<uint8_t> open_ends_;
 };
 
 enum class CorrespondenceMethod { kBruteForce, kGridSearch, kLookupTable };
@@ -46,8 +66,8 @@ bool ParseCorrespondenceMethod(const std::string& text, CorrespondenceMethod* ou
 
 struct CorrespondenceOptions {
   CorrespondenceMethod method = CorrespondenceMethod::kLookupTable;
-  // Grid cell size for grid search and lookup table (m). 0 = choose from the map: about
-  // the median segment length, clamped to [0.1, 1] m, which keeps lists short (3.1.1).
+  // Grid cell size for grid search and lookup table (m). 0 = choose from the map: half
+  // the median segment length, clamped to [0.03, 1] m, which keeps lists short (3.1.1).
   double cell_size = 0.0;
   // How far from the map the lookup table is grown (m): points farther than this never
   // match. It must cover the largest correspondence threshold used (the initial error).
@@ -64,7 +84,7 @@ void FindCorrespondences(const CorrespondenceSearch& search, const std::vector<E
                          double max_distance, std::vector<SegmentMatch>* out);
 
 
-// Default cell size for a map (m): median segment length clamped to [0.1, 1].
+// Default cell size for a map (m): half the median segment length clamped to [0.03, 1].
 double ChooseCellSize(const std::vector<Segment>& segments);
 
 // A segment with what every distance query needs precomputed; all three searches use the
@@ -86,7 +106,23 @@ struct PreparedSegment {
 };
 std::vector<PreparedSegment> PrepareSegments(const std::vector<Segment>& segments);
 
-// The full match (region, closest point) of p against one segment.
-SegmentMatch MakeMatch(const Eigen::Vector2d& p, const std::vector<Segment>& segments, int index);
+// The full match (region, closest point) of p against one prepared segment.
+inline SegmentMatch MakeMatch(const Eigen::Vector2d& p, const PreparedSegment& s, int index, double d2) {
+  SegmentMatch m;
+  m.segment = index;
+  m.distance = std::sqrt(d2);
+  const double t = (p - s.a).dot(s.d) * s.inv_length2;
+  if (t <= 0.0) {
+    m.region = SegmentRegion::kStartPoint;
+    m.closest = s.a;
+  } else if (t >= 1.0) {
+    m.region = SegmentRegion::kEndPoint;
+    m.closest = s.a + s.d;
+  } else {
+    m.region = SegmentRegion::kInterior;
+    m.closest = s.a + t * s.d;
+  }
+  return m;
+}
 
 }  // namespace minenav

@@ -103,7 +103,7 @@ TEST(CorrespondenceTest, FactoryAndNames) {
     EXPECT_EQ(search->segments().size(), testing::RoomWorld().size());
   }
   EXPECT_FALSE(ParseCorrespondenceMethod("fast", &m));
-  EXPECT_DOUBLE_EQ(ChooseCellSize({{0, 0, 0.4, 0}, {0, 0, 0.6, 0}, {0, 0, 0.5, 0}}), 0.5);
+  EXPECT_DOUBLE_EQ(ChooseCellSize({{0, 0, 0.4, 0}, {0, 0, 0.6, 0}, {0, 0, 0.5, 0}}), 0.25);
 }
 
 TEST(SegmentGridTest, BoxDistancesMatchSampling) {

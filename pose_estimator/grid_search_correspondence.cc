@@ -51,7 +51,7 @@ SegmentMatch GridSearchCorrespondence::Nearest(const Eigen::Vector2d& p, double 
     }
   }
   if (best < 0 || best_d2 > max_distance * max_distance) return SegmentMatch{};
-  return MakeMatch(p, segments_, best);
+  return MakeMatch(p, prepared_[static_cast<size_t>(best)], best, best_d2);
 }
 
 }  // namespace minenav

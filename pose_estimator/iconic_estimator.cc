@@ -46,7 +46,7 @@ IconicEstimator::IconicEstimator(IconicEstimatorOptions options) : options_(std:
   options_.correspondence.max_distance =
       std::max(options_.correspondence.max_distance, options_.match.initial_threshold);
   if (options_.mode == IconicMode::kAllPrevious)
-    scans_ = std::make_unique<ScanSetMap>(options_.correspondence.cell_size, options_.correspondence.max_distance);
+    scans_ = std::make_unique<ScanSetMap>(options_.scan_map_cell_size, options_.correspondence.max_distance);
 }
 
 std::string IconicEstimator::SetMap(const std::vector<Segment>& segments) {
@@ -100,7 +100,9 @@ IconicMatchResult IconicEstimator::AddScan(const LadarScan& scan, const Pose2& i
         scans_->AddScan(std::move(local), initial);
       } else {
         SegmentMap clean = PrepareSegmentMap(TransformSegments(initial, local), options_.map);
-        map_ = MakeCorrespondenceSearch(std::move(clean.segments), options_.correspondence);
+        CorrespondenceOptions correspondence = options_.correspondence;
+        if (options_.mode == IconicMode::kFirstScan) correspondence.cell_size = options_.scan_map_cell_size;
+        map_ = MakeCorrespondenceSearch(std::move(clean.segments), correspondence);
       }
       result.converged = true;
       result.status = "ok: first scan defines the map";
@@ -123,6 +125,7 @@ std::vector<IconicMatchResult> EstimateSequence(const std::vector<LadarScan>& sc
     IconicEstimator estimator(options);
     std::string map_problem;
     if (options.mode == IconicMode::kSurveyed) map_problem = estimator.SetMap(map);
+    int last_good = -1;  // index of the last converged estimate, for chain_odometry
     for (size_t k = 0; k < scans.size(); ++k) {
       if (!map_problem.empty()) {
         IconicMatchResult r;
@@ -131,7 +134,13 @@ std::vector<IconicMatchResult> EstimateSequence(const std::vector<LadarScan>& sc
         results.push_back(r);
         continue;
       }
-      results.push_back(estimator.AddScan(scans[k], initial_poses[k]));
+      Pose2 initial = initial_poses[k];
+      if (options.chain_odometry && last_good >= 0) {
+        const size_t j = static_cast<size_t>(last_good);
+        initial = results[j].pose * Between(initial_poses[j], initial_poses[k]);
+      }
+      results.push_back(estimator.AddScan(scans[k], initial));
+      if (results.back().converged) last_good = static_cast<int>(k);
     }
     return results;
   }
@@ -157,7 +166,7 @@ std::vector<IconicMatchResult> EstimateSequence(const std::vector<LadarScan>& sc
   MultiScanOptions multi;
   multi.match = options.match;
   multi.partial = options.partial;
-  multi.cell_size = options.correspondence.cell_size;
+  multi.cell_size = options.scan_map_cell_size;
   multi.max_pair_distance = options.max_pair_distance;
   multi.point_stride = options.point_stride;
   const MultiScanResult out = MatchScansSimultaneously(inputs, multi);

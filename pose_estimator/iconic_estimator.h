@@ -38,6 +38,14 @@ struct IconicEstimatorOptions {
   SegmentMapOptions map;
   PartialScanOptions partial;
   PolylineFitOptions fit;
+  // Lookup table cells for maps made of raw scans (first-scan, all-previous, simultaneous),
+  // m. Default 0.1 m; 0 = automatic (finer: faster queries, slower builds).
+  double scan_map_cell_size = 0.1;
+  // Sequential modes in EstimateSequence: when true, the given initial poses are odometry
+  // (a drifting frame) and scan k starts from the last converged estimate composed with the
+  // odometry motion since that scan; when false they are used as they are (an offline
+  // survey's initial estimates in the map frame). Default false.
+  bool chain_odometry = false;
   // Simultaneous mode only.
   double max_pair_distance = 60.0;  // m
   int point_stride = 1;

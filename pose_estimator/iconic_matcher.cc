@@ -62,10 +62,12 @@ Accumulated Linearise(const std::vector<Eigen::Vector2d>& points, const Correspo
   const Eigen::Matrix2d R = pose.rotation();
   const Eigen::Vector2d t = pose.translation();
   const std::vector<Segment>& segments = map.segments();
+  const std::vector<uint8_t>* open_ends = options.reject_open_ends ? &map.open_ends() : nullptr;
   for (const Eigen::Vector2d& p : points) {
     const Eigen::Vector2d P = R * p + t;
     const SegmentMatch m = map.Nearest(P, threshold);
     if (!m.matched()) continue;
+    if (open_ends && IsOpenEnd(*open_ends, m.segment, m.region)) continue;
     const IconicResidual r =
         ComputeMapResidual(P, t, segments[static_cast<size_t>(m.segment)], m.closest, m.region);
     const double w = RobustWeight(options.loss, r.f, options.loss_scale);

@@ -34,6 +34,9 @@ struct IconicMatchOptions {
   // Robust loss and its scale (m). Default none (the thesis's plain least squares).
   RobustLoss loss = RobustLoss::kNone;
   double loss_scale = 0.1;
+  // Skip pairs of a point with an open polyline end (see ComputeOpenEnds): such points see
+  // what the map does not hold. Default true.
+  bool reject_open_ends = true;
   // A step longer than this (m, or rad for heading) is cut to it: Gauss-Newton can
   // overshoot on the first iterations with a large threshold. Default 1 m / 0.35 rad.
   double max_step_translation = 1.0;

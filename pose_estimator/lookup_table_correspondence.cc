@@ -10,6 +10,47 @@ namespace minenav {
 namespace {
 // Slack on the pruning test so that rounding never drops a segment that ties.
 constexpr double kPruneSlack = 1e-9;
+
+// Fast versions of BoxSegmentMin/MaxDistance (segment_grid.h) for the build's inner loop;
+// the unit test checks them against each other through the brute-force equality.
+double BoxMaxDistance(const Eigen::Vector2d& lo, const Eigen::Vector2d& hi, const PreparedSegment& s) {
+  const double d2 = std::max(std::max(s.SquaredDistance(lo), s.SquaredDistance(hi)),
+                             std::max(s.SquaredDistance({lo.x(), hi.y()}), s.SquaredDistance({hi.x(), lo.y()})));
+  return std::sqrt(d2);
+}
+
+double PointBoxSquaredDistance(const Eigen::Vector2d& p, const Eigen::Vector2d& lo, const Eigen::Vector2d& hi) {
+  const double dx = std::max(std::max(lo.x() - p.x(), 0.0), p.x() - hi.x());
+  const double dy = std::max(std::max(lo.y() - p.y(), 0.0), p.y() - hi.y());
+  return dx * dx + dy * dy;
+}
+
+// Liang-Barsky: does the segment a + t d, t in [0, 1], meet the box?
+bool SegmentMeetsBox(const Eigen::Vector2d& lo, const Eigen::Vector2d& hi, const PreparedSegment& s) {
+  double t0 = 0.0, t1 = 1.0;
+  const double p[4] = {-s.d.x(), s.d.x(), -s.d.y(), s.d.y()};
+  const double q[4] = {s.a.x() - lo.x(), hi.x() - s.a.x(), s.a.y() - lo.y(), hi.y() - s.a.y()};
+  for (int k = 0; k < 4; ++k) {
+    if (p[k] == 0.0) {
+      if (q[k] < 0.0) return false;
+    } else {
+      const double r = q[k] / p[k];
+      if (p[k] < 0.0) t0 = std::max(t0, r);
+      else t1 = std::min(t1, r);
+      if (t0 > t1) return false;
+    }
+  }
+  return true;
+}
+
+double BoxMinDistance(const Eigen::Vector2d& lo, const Eigen::Vector2d& hi, const PreparedSegment& s) {
+  if (SegmentMeetsBox(lo, hi, s)) return 0.0;
+  // Disjoint convex sets: the least distance is between a vertex of one and the other.
+  double d2 = std::min(PointBoxSquaredDistance(s.a, lo, hi), PointBoxSquaredDistance(s.a + s.d, lo, hi));
+  d2 = std::min(d2, std::min(std::min(s.SquaredDistance(lo), s.SquaredDistance(hi)),
+                             std::min(s.SquaredDistance({lo.x(), hi.y()}), s.SquaredDistance({hi.x(), lo.y()}))));
+  return std::sqrt(d2);
+}
 }  // namespace
 
 LookupTableCorrespondence::LookupTableCorrespondence(std::vector<Segment> segments, double cell_size,
@@ -17,7 +58,8 @@ LookupTableCorrespondence::LookupTableCorrespondence(std::vector<Segment> segmen
     : segments_(std::move(segments)),
       prepared_(PrepareSegments(segments_)),
       reach_(reach),
-      frame_(GridFrame::Covering(segments_, cell_size, reach)) {
+      frame_(GridFrame::Covering(segments_, cell_size, reach)),
+      inv_cell_(1.0 / frame_.cell) {
   // A candidate in a cell, with its least distance to the cell cached for pruning.
   struct Entry {
     int32_t id;
@@ -38,8 +80,7 @@ LookupTableCorrespondence::LookupTableCorrespondence(std::vector<Segment> segmen
       const int64_t k = frame_.Index(ix, iy);
       const Eigen::Vector2d lo = frame_.CellMin(ix, iy);
       lists[static_cast<size_t>(k)].push_back({static_cast<int32_t>(i), 0.0});
-      bound[static_cast<size_t>(k)] =
-          std::min(bound[static_cast<size_t>(k)], BoxSegmentMaxDistance(lo, lo + diag, segments_[i]));
+      bound[static_cast<size_t>(k)] = std::min(bound[static_cast<size_t>(k)], BoxMaxDistance(lo, lo + diag, prepared_[i]));
       if (!queued[static_cast<size_t>(k)]) {
         queued[static_cast<size_t>(k)] = 1;
         queue.push_back(k);
@@ -74,12 +115,11 @@ LookupTableCorrespondence::LookupTableCorrespondence(std::vector<Segment> segmen
           const double dc = std::sqrt(ps.SquaredDistance(centre));
           // Cheap bounds first: dc - h <= dmin and dmax <= dc + h.
           if (dc - half_diagonal > reach_ || dc - half_diagonal > bound[un] + kPruneSlack) continue;
-          const Segment& s = segments_[static_cast<size_t>(e.id)];
-          const double dmin = BoxSegmentMinDistance(lo, hi, s);
+          const double dmin = BoxMinDistance(lo, hi, ps);
           if (dmin > reach_ || dmin > bound[un] + kPruneSlack) continue;
           added.push_back({e.id, dmin});
           stamp[static_cast<size_t>(e.id)] = n;
-          bound[un] = std::min(bound[un], BoxSegmentMaxDistance(lo, hi, s));
+          bound[un] = std::min(bound[un], BoxMaxDistance(lo, hi, ps));
         }
         if (added.empty()) continue;
         target.insert(target.end(), added.begin(), added.end());
@@ -105,10 +145,12 @@ LookupTableCorrespondence::LookupTableCorrespondence(std::vector<Segment> segmen
 }
 
 SegmentMatch LookupTableCorrespondence::Nearest(const Eigen::Vector2d& p, double max_distance) const {
-  const int ix = frame_.CellX(p.x());
-  const int iy = frame_.CellY(p.y());
-  if (!frame_.Contains(ix, iy) || !(max_distance >= 0.0)) return SegmentMatch{};
-  const size_t k = static_cast<size_t>(frame_.Index(ix, iy));
+  // One cell per point (3.1.1); the comparisons also reject NaN coordinates.
+  const double fx = (p.x() - frame_.x0) * inv_cell_;
+  const double fy = (p.y() - frame_.y0) * inv_cell_;
+  if (!(fx >= 0.0 && fy >= 0.0 && fx < frame_.nx && fy < frame_.ny) || !(max_distance >= 0.0))
+    return SegmentMatch{};
+  const size_t k = static_cast<size_t>(static_cast<int64_t>(fy) * frame_.nx + static_cast<int64_t>(fx));
   double best_d2 = std::numeric_limits<double>::infinity();
   int best = -1;
   // Lists are sorted by id, so strict < keeps the lowest index among ties.
@@ -121,7 +163,7 @@ SegmentMatch LookupTableCorrespondence::Nearest(const Eigen::Vector2d& p, double
     }
   }
   if (best < 0 || best_d2 > max_distance * max_distance) return SegmentMatch{};
-  return MakeMatch(p, segments_, best);
+  return MakeMatch(p, prepared_[static_cast<size_t>(best)], best, best_d2);
 }
 
 double LookupTableCorrespondence::MeanListLength() const {

@@ -39,6 +39,7 @@ class LookupTableCorrespondence : public CorrespondenceSearch {
   std::vector<PreparedSegment> prepared_;
   double reach_ = 0.0;
   GridFrame frame_;
+  double inv_cell_ = 1.0;
   std::vector<int32_t> offsets_;  // CSR over cells
   std::vector<int32_t> ids_;
 };

@@ -49,13 +49,13 @@ Linearisation Linearise(const std::vector<ScanModel>& models, const std::vector<
   lin.matched_per_scan.assign(models.size(), 0);
   std::vector<Pose2> inverses;
   for (const Pose2& p : poses) inverses.push_back(p.inverse());
+  // Only the upper triangle is stored; Eigen matrices start uninitialised, hence Zero().
   auto add_block = [&](int r, int c, const Eigen::Matrix3d& b) {
-    if (r > c) {
-      lin.blocks[{c, r}] += b.transpose();
-    } else {
-      auto [it, inserted] = lin.blocks.try_emplace({r, c}, Eigen::Matrix3d::Zero());
+    auto [it, inserted] = lin.blocks.try_emplace({std::min(r, c), std::max(r, c)}, Eigen::Matrix3d::Zero());
+    if (r > c)
+      it->second += b.transpose();
+    else
       it->second += b;
-    }
   };
   for (size_t m = 0; m < models.size(); ++m) {
     const int vm = models[m].variable;
@@ -83,6 +83,7 @@ Linearisation Linearise(const std::vector<ScanModel>& models, const std::vector<
       }
       if (best_n < 0) continue;
       const ScanModel& model_n = models[static_cast<size_t>(best_n)];
+      if (options.match.reject_open_ends && IsOpenEnd(model_n.table->open_ends(), best.segment, best.region)) continue;
       const IconicResidual r =
           ComputeIconicResidual(poses[m], p, poses[static_cast<size_t>(best_n)],
                                 model_n.table->segments()[static_cast<size_t>(best.segment)], best.region);
@@ -165,7 +166,8 @@ MultiScanResult MatchScansSimultaneously(const std::vector<MultiScanInput>& scan
       result.status = "scan " + std::to_string(k) + ": initial pose is not finite";
       return result;
     }
-    std::vector<Segment> segments = PartialScansToSegments(SplitIntoPartialScans(model.points, options.partial));
+    const auto partial = SplitIntoPartialScans(model.points, options.partial);
+    std::vector<Segment> segments = PartialScansToSegments(partial);
     std::tie(model.centre, model.radius) = BoundingCircle(segments);
     const double cell = options.cell_size > 0.0 ? options.cell_size : ChooseCellSize(segments);
     model.table = std::make_unique<LookupTableCorrespondence>(std::move(segments), cell,
@@ -233,7 +235,7 @@ MultiScanResult MatchScansSimultaneously(const std::vector<MultiScanInput>& scan
       max_r = std::max(max_r, std::abs(d(2)));
     }
     threshold = std::min(threshold, std::max(Median(&lin.distances), options.match.min_threshold));
-    if (max_t < options.match.epsilon_translation && max_r < options.match.epsilon_rotation) {
+    if (max_t < options.epsilon_translation && max_r < options.epsilon_rotation) {
       converged = true;
       break;
     }

@@ -19,9 +19,16 @@
 namespace minenav {
 
 struct MultiScanOptions {
-  IconicMatchOptions match;     // thresholds, epsilons (on every pose), loss, iterations
+  IconicMatchOptions match;     // thresholds, loss, iterations (its epsilons are not used)
+  // Converged when no pose moves more than these (m, rad). Looser than one scan's: points
+  // hop between overlapping scans' polylines, so the step jitters at ~0.3 mm. Defaults
+  // 1 mm and 1e-4 rad.
+  double epsilon_translation = 1e-3;
+  double epsilon_rotation = 1e-4;
   PartialScanOptions partial;   // how scans become polylines
-  double cell_size = 0.0;       // m, lookup table cells; 0 = automatic
+  // Lookup table cells of each scan's table (m). Default 0.1 m: raw scan segments are a few
+  // cm long, and the automatic (finer) size makes queries faster but builds much slower.
+  double cell_size = 0.1;
   // Scans whose initial positions are farther apart than this are never paired (m).
   // Default 60 m: beyond twice the useful range two scans cannot overlap.
   double max_pair_distance = 60.0;
