@@ -22,9 +22,16 @@ minenav_install_deps() {
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 }
 
-# minenav_build DIR [cmake args...]
+# minenav_build DIR [cmake args...] [-- targets...]   (no targets: everything)
 minenav_build() {
   local dir="$1"; shift
-  cmake -S "$MINENAV_ROOT" -B "$dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo "$@" >/dev/null
-  cmake --build "$dir" -j "$MINENAV_JOBS"
+  local args=() targets=()
+  while [ $# -gt 0 ] && [ "$1" != "--" ]; do args+=("$1"); shift; done
+  [ "${1:-}" = "--" ] && { shift; targets=("$@"); }
+  cmake -S "$MINENAV_ROOT" -B "$dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo "${args[@]}" >/dev/null
+  if [ ${#targets[@]} -eq 0 ]; then
+    cmake --build "$dir" -j "$MINENAV_JOBS"
+  else
+    cmake --build "$dir" -j "$MINENAV_JOBS" --target "${targets[@]}"
+  fi
 }
