@@ -26,3 +26,12 @@ if(TARGET minenav_node)
   minenav_executable(feature_pose_estimator feature_pose_estimator_main.cc)
   target_link_libraries(feature_pose_estimator PRIVATE minenav_feature minenav_node)
 endif()
+
+# The process in batch (no bus): a log in, poses out, bad input.
+if(TARGET feature_pose_estimator AND EXISTS "${CMAKE_SOURCE_DIR}/tests/child_process.cc")
+  minenav_test(NAME feature_process_test
+    SOURCES feature_pose_estimator_process_test.cc "${CMAKE_SOURCE_DIR}/tests/child_process.cc"
+    LIBS minenav_feature minenav_node)
+  target_compile_definitions(feature_process_test PRIVATE MINENAV_FPE_BIN="$<TARGET_FILE:feature_pose_estimator>")
+  add_dependencies(feature_process_test feature_pose_estimator)
+endif()
