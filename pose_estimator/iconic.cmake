@@ -22,3 +22,19 @@ minenav_test(NAME iconic_test NO_LCM
     ${CMAKE_CURRENT_LIST_DIR}/iconic_estimator_test.cc
     ${CMAKE_CURRENT_LIST_DIR}/iconic_test_world.cc
   LIBS minenav_iconic)
+
+# The process: live on the bus, or batch over a log (--log) writing a poses CSV.
+if(TARGET minenav_node)
+  minenav_executable(iconic_pose_estimator ${CMAKE_CURRENT_LIST_DIR}/iconic_pose_estimator_main.cc)
+  target_link_libraries(iconic_pose_estimator PRIVATE minenav_iconic minenav_node ZLIB::ZLIB)
+endif()
+
+# The process in batch (no bus): a log in, poses out, every mode, bad input.
+if(TARGET iconic_pose_estimator AND EXISTS "${CMAKE_SOURCE_DIR}/tests/child_process.cc")
+  minenav_test(NAME iconic_process_test
+    SOURCES ${CMAKE_CURRENT_LIST_DIR}/iconic_process_test.cc ${CMAKE_CURRENT_LIST_DIR}/iconic_test_world.cc
+            "${CMAKE_SOURCE_DIR}/tests/child_process.cc"
+    LIBS minenav_iconic minenav_node)
+  target_compile_definitions(iconic_process_test PRIVATE MINENAV_IPE_BIN="$<TARGET_FILE:iconic_pose_estimator>")
+  add_dependencies(iconic_process_test iconic_pose_estimator)
+endif()

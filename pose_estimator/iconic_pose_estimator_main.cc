@@ -1,0 +1,319 @@
+// iconic_pose_estimator: the iconic pose estimators of thesis chapter 3 as a process.
+//
+// Batch (--log IN.lcm): reads LADAR_SCAN and ODOMETRY (and LINE_MAP / CONTOUR_MAP) from
+// the log as fast as it can and, with --poses-out EST.csv, writes one pose per scan
+// (utime,x,y,theta): the estimate when it converged, else the initial estimate.
+//   iconic_pose_estimator --log IN.lcm [--map MAP.json] --mode MODE --poses-out EST.csv
+// Live (no --log): subscribes LADAR_SCAN, ODOMETRY and a map (--map FILE, line_map_t on
+// LINE_MAP or contour_map_t on CONTOUR_MAP), publishes pose_estimate_t on POSE_IPE per
+// scan and a HEARTBEAT.
+//
+// Initial estimate of a scan (--initial auto): an ODOMETRY reading with the scan's exact
+// utime is the scan's initial estimate in the map frame (offline surveys, DESIGN.md);
+// otherwise the last converged estimate moved by the odometry increment since that scan
+// (odometry interpolated at the scan's utime), or the odometry pose itself for the first
+// scan. A scan waits until odometry at or after its utime has arrived.
+
+#include <zlib.h>
+
+#include <algorithm>
+#include <ctime>
+#include <deque>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "common/angle.h"
+#include "common/config.h"
+#include "common/file_io.h"
+#include "common/log.h"
+#include "common/node/bus.h"
+#include "common/node/conversions.h"
+#include "common/node/node_runtime.h"
+#include "common/pose_estimate.h"
+#include "minenav/contour_map_t.hpp"
+#include "minenav/heartbeat_t.hpp"
+#include "minenav/ladar_scan_t.hpp"
+#include "minenav/line_map_t.hpp"
+#include "minenav/odometry_t.hpp"
+#include "minenav/pose_estimate_t.hpp"
+#include "pose_estimator/iconic_estimator.h"
+
+namespace minenav {
+namespace {
+
+struct ProcessOptions {
+  std::string map;
+  std::string poses_out;
+  std::string mode = "surveyed";
+  std::string initial = "auto";
+  std::string method = "lookup";
+  std::string loss = "none";
+  double max_odometry_gap = 1.0;  // s
+  std::string scan_channel = "LADAR_SCAN";
+  std::string odometry_channel = "ODOMETRY";
+  std::string map_channel = "LINE_MAP";
+  std::string contour_channel = "CONTOUR_MAP";
+  std::string pose_channel = "POSE_IPE";
+};
+
+void Declare(ConfigSchema& s, ProcessOptions& p, IconicEstimatorOptions& e) {
+  s.AddString("map", &p.map, "surveyed line map JSON ({\"segments\": ...}); empty = from LINE_MAP or CONTOUR_MAP");
+  s.AddString("poses_out", &p.poses_out, "batch: write one pose per scan to this CSV (utime,x,y,theta)");
+  s.AddString("mode", &p.mode,
+              "surveyed (3.1, needs a map), scan-map (3.2), first-scan (3.3), all-previous (3.4), "
+              "simultaneous (3.5, batch only)",
+              {"surveyed", "scan-map", "first-scan", "all-previous", "simultaneous"});
+  s.AddString("initial", &p.initial,
+              "initial estimate: auto (odometry with the scan's utime, else chained), odometry, chained",
+              {"auto", "odometry", "chained"});
+  s.AddDouble("max_odometry_gap", &p.max_odometry_gap, "s",
+              "farthest odometry reading from a scan's utime that may serve for it", 0.0, 3600.0);
+  s.AddString("method", &p.method, "correspondence: brute (Cox), grid (Gonzalez), lookup (thesis 3.1.1)",
+              {"brute", "grid", "lookup"});
+  IconicMatchOptions& m = e.match;
+  s.AddDouble("initial_threshold", &m.initial_threshold, "m", "correspondence threshold of the first iteration", 0.01, 100.0);
+  s.AddDouble("min_threshold", &m.min_threshold, "m", "floor of the shrinking threshold (~3 sigma of range noise)", 0.001, 100.0);
+  s.AddDouble("epsilon_translation", &m.epsilon_translation, "m", "convergence: largest x/y step", 1e-9, 1.0);
+  s.AddDouble("epsilon_rotation", &m.epsilon_rotation, "rad", "convergence: largest heading step", 1e-12, 1.0);
+  s.AddInt("max_iterations", &m.max_iterations, "Gauss-Newton iteration limit", 1, 10000);
+  s.AddInt("min_correspondences", &m.min_correspondences, "fewer matched points = no estimate", 3, 1000000);
+  s.AddString("loss", &p.loss, "robust loss: none, huber, cauchy", {"none", "huber", "cauchy"});
+  s.AddDouble("loss_scale", &m.loss_scale, "m", "scale of the robust loss", 1e-4, 10.0);
+  s.AddBool("reject_open_ends", &m.reject_open_ends, "skip points nearest to the open end of a polyline");
+  s.AddDouble("cell_size", &e.correspondence.cell_size, "m", "grid cell of a surveyed/fit map; 0 = automatic", 0.0, 10.0);
+  s.AddDouble("scan_map_cell_size", &e.scan_map_cell_size, "m", "grid cell of maps made of raw scans", 0.0, 10.0);
+  s.AddDouble("break_distance", &e.partial.break_distance, "m", "gap that splits a scan into partial scans", 0.01, 100.0);
+  s.AddDouble("fit_segment_length", &e.fit.segment_length, "m", "segment length of polylines fit to a scan (scan-map)", 0.05, 100.0);
+  s.AddDouble("max_pair_distance", &e.max_pair_distance, "m", "simultaneous: scans farther apart are not paired", 0.0, 1e6);
+  s.AddInt("point_stride", &e.point_stride, "simultaneous: use every k-th point", 1, 1000);
+  s.AddChannel("scan_channel", &p.scan_channel, "subscribes", "ladar_scan_t", "scans");
+  s.AddChannel("odometry_channel", &p.odometry_channel, "subscribes", "odometry_t", "initial estimates");
+  s.AddChannel("map_channel", &p.map_channel, "subscribes", "line_map_t", "surveyed map when --map is empty");
+  s.AddChannel("contour_channel", &p.contour_channel, "subscribes", "contour_map_t", "contour map as a line map when --map is empty");
+  s.AddChannel("pose_channel", &p.pose_channel, "publishes", "pose_estimate_t", "one estimate per scan (source ipe)");
+  s.AddHelpEpilog(
+      "Examples:\n"
+      "  iconic_pose_estimator --log survey.lcm --map mine.json --mode surveyed --poses-out est.csv\n"
+      "  iconic_pose_estimator --log survey.lcm --mode simultaneous --poses-out est.csv\n"
+      "  iconic_pose_estimator --map mine.json                               (live)\n"
+      "Exit codes: 0 ok, 2 bad flag or input file, 3 runtime failure.\n");
+}
+
+// Odometry pose at `utime` (readings sorted by utime): exact, interpolated, or the nearest
+// within max_gap_us.
+std::optional<Pose2> OdometryAt(const std::deque<OdometryReading>& odo, int64_t utime, int64_t max_gap_us) {
+  if (odo.empty()) return std::nullopt;
+  auto after = std::lower_bound(odo.begin(), odo.end(), utime,
+                                [](const OdometryReading& r, int64_t u) { return r.utime < u; });
+  if (after != odo.end() && after->utime == utime) return after->pose;
+  if (after == odo.end()) {
+    if (utime - odo.back().utime > max_gap_us) return std::nullopt;
+    return odo.back().pose;
+  }
+  if (after == odo.begin()) {
+    if (after->utime - utime > max_gap_us) return std::nullopt;
+    return after->pose;
+  }
+  const OdometryReading& a = *(after - 1);
+  const OdometryReading& b = *after;
+  if (b.utime - a.utime > 2 * max_gap_us) return std::nullopt;
+  const double f = static_cast<double>(utime - a.utime) / static_cast<double>(b.utime - a.utime);
+  return Pose2(a.pose.x + f * (b.pose.x - a.pose.x), a.pose.y + f * (b.pose.y - a.pose.y),
+               NormalizeAngle(a.pose.theta + f * NormalizeAngle(b.pose.theta - a.pose.theta)));
+}
+
+bool HasExactOdometry(const std::deque<OdometryReading>& odo, int64_t utime) {
+  auto it = std::lower_bound(odo.begin(), odo.end(), utime,
+                             [](const OdometryReading& r, int64_t u) { return r.utime < u; });
+  return it != odo.end() && it->utime == utime;
+}
+
+// Contours as segments; a compressed map is inflated first (contour_map_t's comment).
+std::vector<Segment> ContourMapSegments(const contour_map_t& m) {
+  if (m.encoding == contour_map_t::ENCODING_ZLIB) {
+    if (m.uncompressed_size <= 0 || m.uncompressed_size > (256 << 20))
+      throw InputError("contour map: bad uncompressed_size " + std::to_string(m.uncompressed_size));
+    std::vector<uint8_t> raw(static_cast<size_t>(m.uncompressed_size));
+    uLongf size = static_cast<uLongf>(raw.size());
+    if (uncompress(raw.data(), &size, m.payload.data(), static_cast<uLong>(m.payload.size())) != Z_OK ||
+        size != raw.size())
+      throw InputError("contour map: payload does not inflate to " + std::to_string(m.uncompressed_size) + " bytes");
+    contour_map_t inner{};
+    std::string error;
+    if (!DecodeMessage(raw.data(), static_cast<int>(raw.size()), "CONTOUR_MAP payload", &inner, &error))
+      throw InputError(error);
+    if (inner.encoding == contour_map_t::ENCODING_ZLIB) throw InputError("contour map: nested compression");
+    return ContourMapSegments(inner);
+  }
+  std::vector<Segment> out;
+  for (const contour_t& c : m.contours) {
+    if (c.x.size() != c.y.size()) throw InputError("contour map: contour with x and y of different sizes");
+    for (size_t i = 1; i < c.x.size(); ++i) out.emplace_back(c.x[i - 1], c.y[i - 1], c.x[i], c.y[i]);
+    if (c.closed && c.x.size() > 2) out.emplace_back(c.x.back(), c.y.back(), c.x.front(), c.y.front());
+  }
+  return out;
+}
+
+double ThreadCpuSeconds() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
+int Main(int argc, char** argv) {
+  ConfigSchema schema("iconic_pose_estimator",
+                      "Iconic pose estimator (thesis ch. 3): scans + odometry [+ map] -> POSE_IPE.");
+  NodeRuntime runtime("iconic_pose_estimator", schema);
+  ProcessOptions p;
+  IconicEstimatorOptions eo;
+  Declare(schema, p, eo);
+  if (schema.Parse(argc, argv) == ParseOutcome::kExit) return 0;
+  ParseIconicMode(p.mode, &eo.mode);
+  ParseCorrespondenceMethod(p.method, &eo.correspondence.method);
+  ParseRobustLoss(p.loss, &eo.match.loss);
+  if (const std::string why = ValidateIconicMatchOptions(eo.match); !why.empty()) throw UsageError(why);
+  const bool batch = !runtime.options().log.empty();
+  if (!p.poses_out.empty() && !batch) throw UsageError("--poses-out needs --log (batch mode)");
+  if (eo.mode == IconicMode::kSimultaneous && !batch)
+    throw UsageError("--mode simultaneous needs the whole sequence: use it with --log");
+  if (eo.mode != IconicMode::kSurveyed && !p.map.empty())
+    MINENAV_LOG(kWarn) << "--map is only used by --mode surveyed; ignored";
+
+  std::unique_ptr<IconicEstimator> estimator = std::make_unique<IconicEstimator>(eo);
+  if (eo.mode == IconicMode::kSurveyed && !p.map.empty()) {
+    const std::vector<Segment> segments = LoadSegmentsJson(p.map);
+    if (const std::string why = estimator->SetMap(segments); !why.empty()) throw InputError(p.map + ": " + why);
+    MINENAV_LOG(kInfo) << "map " << p.map << ": " << estimator->map_size() << " segments";
+  }
+  runtime.Start();
+  Bus& bus = runtime.bus();
+  const int64_t max_gap_us = std::llround(p.max_odometry_gap * 1e6);
+
+  int64_t line_version = -1, contour_version = -1;  // outlive the handlers below
+  if (eo.mode == IconicMode::kSurveyed && p.map.empty()) {
+    auto set_map = [&](std::vector<Segment> segments, const std::string& what) {
+      auto fresh = std::make_unique<IconicEstimator>(eo);
+      if (const std::string why = fresh->SetMap(segments); !why.empty()) throw InputError(what + ": " + why);
+      estimator = std::move(fresh);
+      MINENAV_LOG(kInfo) << "map from " << what << ": " << estimator->map_size() << " segments";
+    };
+    Subscribe<line_map_t>(bus, p.map_channel, [&, set_map](const line_map_t& m) {
+      if (m.version == line_version) return;
+      set_map(SegmentsFromLcm(m), p.map_channel + " '" + m.name + "' version " + std::to_string(m.version));
+      line_version = m.version;
+    });
+    Subscribe<contour_map_t>(bus, p.contour_channel, [&, set_map](const contour_map_t& m) {
+      if (m.version == contour_version) return;
+      set_map(ContourMapSegments(m), p.contour_channel + " version " + std::to_string(m.version));
+      contour_version = m.version;
+    });
+  }
+
+  std::deque<OdometryReading> odometry;
+  std::deque<LadarScan> pending;
+  std::vector<StampedPose> poses;
+  std::optional<std::pair<Pose2, Pose2>> last;  // (estimate, odometry) of the last converged scan
+  std::vector<LadarScan> all_scans;             // simultaneous mode
+  std::vector<Pose2> all_initial;
+  int64_t scans = 0, converged = 0, skipped = 0;
+
+  auto publish = [&](const IconicMatchResult& r, const LadarScan& scan, double seconds) {
+    PoseEstimate e = ToPoseEstimate(r, scan);
+    e.compute_time = seconds;
+    Publish(bus, p.pose_channel, ToLcm(e));
+  };
+
+  auto process = [&](const LadarScan& scan, bool at_shutdown) -> bool {
+    const bool have_later = !odometry.empty() && odometry.back().utime >= scan.utime;
+    if (!have_later && !at_shutdown) return false;  // wait for odometry
+    const std::optional<Pose2> odo = OdometryAt(odometry, scan.utime, max_gap_us);
+    if (!odo) {
+      ++skipped;
+      MINENAV_LOG(kWarn) << "scan " << scan.scan_id << " at " << scan.utime << ": no odometry within "
+                         << p.max_odometry_gap << " s; skipped";
+      runtime.SetStatus(heartbeat_t::WARN, "no odometry for a scan");
+      return true;
+    }
+    const bool exact = HasExactOdometry(odometry, scan.utime);
+    Pose2 initial = *odo;
+    if (last && (p.initial == "chained" || (p.initial == "auto" && !exact)))
+      initial = last->first * Between(last->second, *odo);
+    if (eo.mode == IconicMode::kSimultaneous) {
+      all_scans.push_back(scan);
+      all_initial.push_back(initial);
+      last = std::make_pair(initial, *odo);
+      return true;
+    }
+    const double t0 = ThreadCpuSeconds();
+    const IconicMatchResult r = estimator->AddScan(scan, initial);
+    const double seconds = ThreadCpuSeconds() - t0;
+    ++scans;
+    publish(r, scan, seconds);
+    if (r.converged) {
+      ++converged;
+      last = std::make_pair(r.pose, *odo);
+      runtime.SetStatus(heartbeat_t::OK, "");
+    } else {
+      MINENAV_LOG(kDebug) << "scan " << scan.scan_id << ": " << r.status;
+      runtime.SetStatus(heartbeat_t::WARN, "last scan: " + r.status);
+    }
+    poses.push_back({scan.utime, r.converged ? r.pose : initial});
+    return true;
+  };
+  auto drain = [&](bool at_shutdown) {
+    while (!pending.empty() && process(pending.front(), at_shutdown)) pending.pop_front();
+  };
+
+  Subscribe<odometry_t>(bus, p.odometry_channel, [&](const odometry_t& m) {
+    const OdometryReading o = FromLcm(m);
+    if (!odometry.empty() && o.utime < odometry.back().utime) {
+      MINENAV_LOG(kWarn) << "ODOMETRY time went back: history cleared";
+      odometry.clear();
+    }
+    odometry.push_back(o);
+    while (odometry.size() > 2 && odometry.front().utime < o.utime - 60'000'000) odometry.pop_front();
+    drain(false);
+  });
+  Subscribe<ladar_scan_t>(bus, p.scan_channel, [&](const ladar_scan_t& m) {
+    LadarScan scan = FromLcm(m);
+    if (const std::string why = ValidateScan(scan); !why.empty()) throw InputError("invalid scan: " + why);
+    pending.push_back(std::move(scan));
+    if (pending.size() > 100) {
+      MINENAV_LOG(kWarn) << "100 scans waiting for odometry: dropping the oldest";
+      pending.pop_front();
+      ++skipped;
+    }
+    drain(false);
+  });
+  runtime.OnShutdown([&] {
+    drain(true);
+    if (eo.mode == IconicMode::kSimultaneous && !all_scans.empty()) {
+      const double t0 = ThreadCpuSeconds();
+      const std::vector<IconicMatchResult> results = EstimateSequence(all_scans, all_initial, {}, eo);
+      const double seconds = (ThreadCpuSeconds() - t0) / static_cast<double>(all_scans.size());
+      for (size_t k = 0; k < results.size(); ++k) {
+        ++scans;
+        converged += results[k].converged;
+        publish(results[k], all_scans[k], seconds);
+        poses.push_back({all_scans[k].utime, results[k].converged ? results[k].pose : all_initial[k]});
+      }
+      if (!results.empty() && !results.back().converged)
+        MINENAV_LOG(kWarn) << "simultaneous estimate: " << results.back().status;
+    }
+    if (!p.poses_out.empty()) {
+      SavePosesCsv(p.poses_out, poses);
+      MINENAV_LOG(kInfo) << "wrote " << poses.size() << " poses to " << p.poses_out;
+    }
+    MINENAV_LOG(kInfo) << scans << " scans estimated (" << p.mode << "), " << converged << " converged, " << skipped
+                       << " skipped";
+  });
+  return runtime.Run();
+}
+
+}  // namespace
+}  // namespace minenav
+
+int main(int argc, char** argv) {
+  return minenav::RunNodeMain("iconic_pose_estimator", [&] { return minenav::Main(argc, argv); });
+}
