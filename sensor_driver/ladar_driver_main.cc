@@ -87,7 +87,7 @@ void Declare(ConfigSchema& s, LadarDriverOptions& o) {
               "[0..1] chance a footprint straddling an occlusion edge reports a range in between" + sensor_default);
   s.AddString("mixed_pixel_min_gap", &m.mixed_pixel_min_gap,
               "[m] range jump inside a footprint that counts as an edge" + sensor_default + " (0.3)");
-  s.AddString("scan_rate", &m.scan_rate, "[Hz] revolutions per second" + sensor_default + " (typhoon 10, cyclone 5)");
+  s.AddString("scan_rate", &m.scan_rate, "[Hz] revolutions per second" + sensor_default + " (typhoon 10, cyclone min(5, 7200 / points))");
   s.AddString("sensor_pose", &o.sensor_pose, "sensor pose in the vehicle frame 'x,y,theta' (m, m, rad or deg)");
   s.AddInt64("seed", &o.seed, "seed of the range noise and mixed pixels (scans depend on seed and scan_id only)",
              0);

@@ -19,6 +19,7 @@ endfunction()
 minenav_bus_test(bus.lcm_bus_round_trip 7701 BusTest.LcmBusRoundTripTimeoutAndBadMessages)
 minenav_bus_test(bus.fleet_drive_record_replay 7702 BusTest.ScriptedDriveIsRecordedCompletelyAndReplaysIdentically)
 minenav_bus_test(bus.bad_messages 7703 BusTest.BadMessagesAreLoggedCountedAndSurvived)
+minenav_bus_test(bus.ladar_replay 7704 BusTest.ReplayRepublishesRecordedScansAtTheRecordedRate)
 # Without the namespace the tests must fail with a clear message, not touch the host network
 # (the output must name private_net.sh; the exit code is then non-zero, which CTest ignores).
 add_test(NAME bus.refuses_host_network COMMAND $<TARGET_FILE:fleet_test> --gtest_filter=BusTest.LcmBusRoundTripTimeoutAndBadMessages)

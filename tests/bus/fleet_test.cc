@@ -26,6 +26,7 @@
 #include "common/geometry.h"
 #include "common/node/bus.h"
 #include "common/node/conversions.h"
+#include "common/node/event_log.h"
 #include "common/node/lcm_bus.h"
 #include "common/scan.h"
 #include "minenav/drive_command_t.hpp"
@@ -380,6 +381,62 @@ TEST_F(BusTest, BadMessagesAreLoggedCountedAndSurvived) {
   EXPECT_EQ(testing::LinesContaining(sim_log, "channel DRIVE_COMMAND").size(), 4u) << sim_log;
   const std::string ladar_log = ReadTextFile(dir / "ladar.txt");
   EXPECT_EQ(testing::LinesContaining(ladar_log, "channel FAKE_TRUTH").size(), 2u) << ladar_log;
+}
+
+TEST_F(BusTest, ReplayRepublishesRecordedScansAtTheRecordedRate) {
+  TempDir dir;
+  const std::string log = dir / "dataset.lcm";
+  std::vector<std::vector<uint8_t>> expected;
+  {
+    LogWriter w(log);
+    const int64_t t0 = 1'600'000'000'000'000;
+    for (int k = 0; k < 10; ++k) {
+      ladar_scan_t s{};
+      s.utime = t0 + k * 100'000;
+      s.scan_id = 1000 + k;
+      s.sensor_id = "carmen-front";
+      s.angle_step = 0.01f;
+      s.max_range = 50.0f;
+      s.num_ranges = 3;
+      s.ranges = {1.0f, 2.0f, static_cast<float>(k)};
+      expected.push_back(EncodeMessage(s));
+      w.Write("LADAR_SCAN", s.utime, expected.back().data(), static_cast<int>(expected.back().size()));
+      odometry_t other{};
+      other.utime = s.utime + 1;
+      w.Write("ODOMETRY", other);  // not replayed
+      if (k == 4) {
+        const uint8_t garbage[9] = {9, 9, 9, 9, 9, 9, 9, 9, 9};
+        w.Write("LADAR_SCAN", s.utime + 2, garbage, 9);  // skipped and counted
+      }
+    }
+    w.Close();
+  }
+  LcmBus bus(url_, 1000);
+  std::vector<std::vector<uint8_t>> got;
+  std::vector<Clock::time_point> arrival;
+  int odometry = 0;
+  bus.Subscribe("LADAR_SCAN", [&](const RawMessage& m) {
+    got.emplace_back(m.data, m.data + m.size);
+    arrival.push_back(Clock::now());
+  });
+  bus.Subscribe("ODOMETRY", [&](const RawMessage&) { ++odometry; });
+  std::map<std::string, heartbeat_t> hb;
+  Subscribe<heartbeat_t>(bus, "HEARTBEAT", [&](const heartbeat_t& m) { hb[m.process] = m; });
+  ChildProcess driver({MINENAV_LADAR_DRIVER_BIN, "--replay", log, "--replay-speed", "1"}, dir / "driver.txt");
+  Pump(bus, 20.0, [&] { return !driver.Running(); });
+  Pump(bus, 0.3);
+  EXPECT_EQ(driver.Wait(1.0), 0) << ReadTextFile(dir / "driver.txt");
+  ASSERT_EQ(got.size(), expected.size()) << ReadTextFile(dir / "driver.txt");
+  EXPECT_TRUE(got == expected) << "replayed scans differ from the recorded ones";
+  EXPECT_EQ(odometry, 0);
+  // Recorded 0.1 s apart: 0.9 s from first to last (generous bounds for a loaded machine).
+  const double span = std::chrono::duration<double>(arrival.back() - arrival.front()).count();
+  EXPECT_GT(span, 0.85);
+  EXPECT_LT(span, 1.5);
+  ASSERT_TRUE(hb.count("ladar_driver"));
+  EXPECT_EQ(hb["ladar_driver"].state, heartbeat_t::STOPPING);
+  EXPECT_EQ(hb["ladar_driver"].messages_bad, 1);
+  EXPECT_EQ(hb["ladar_driver"].messages_in, 10);
 }
 
 }  // namespace
