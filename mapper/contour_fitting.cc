@@ -48,13 +48,14 @@ struct FitPiece {
 
 // The contours being fitted, their vertices laid out in one array.
 struct Problem {
+  std::vector<bool> free;  // per vertex: may it move?
   std::vector<int> ids;
   std::unordered_map<int, int> offset;  // contour id -> index of its first vertex
   std::vector<Eigen::Vector2d> x;
   Box box;
 };
 
-Problem MakeProblem(const std::vector<int>& ids, const ContourMap& map) {
+Problem MakeProblem(const std::vector<int>& ids, const ContourMap& map, const FitRegion* region) {
   Problem p;
   for (const int id : ids) {
     const Contour* c = map.Find(id);
@@ -62,8 +63,10 @@ Problem MakeProblem(const std::vector<int>& ids, const ContourMap& map) {
     p.ids.push_back(id);
     p.offset[id] = static_cast<int>(p.x.size());
     for (const auto& v : c->points) {
+      const bool free = !region || region->Contains(v);
       p.x.push_back(v);
-      p.box.Add(v);
+      p.free.push_back(free);
+      if (free) p.box.Add(v);
     }
   }
   return p;
@@ -95,20 +98,37 @@ std::vector<WorldScan> ToWorldScans(const std::vector<MappedScan>& scans) {
 
 std::vector<FitPiece> CollectPieces(const Problem& prob, const std::vector<WorldScan>& scans, const ContourMap& map,
                                     double threshold) {
+  // Longest segment among the fitted contours: points this far outside the box of the free
+  // vertices may still fall on a segment with a free end.
+  double max_segment = 0.0;
+  for (const int id : prob.ids) {
+    const Contour& c = map.Get(id);
+    for (int k = 0; k < c.NumSegments(); ++k) max_segment = std::max(max_segment, c.GetSegment(k).length());
+  }
   std::vector<FitPiece> out;
   std::vector<ErrorPiece> pieces;
   for (const WorldScan& w : scans)
     for (size_t k = 0; k < w.partials.size(); ++k) {
-      if (!w.boxes[k].Overlaps(prob.box, threshold)) continue;
-      const auto& pts = w.partials[k];
+      if (!w.boxes[k].Overlaps(prob.box, threshold + max_segment)) continue;
+      // Only points near the free vertices can matter.
+      const auto& all = w.partials[k];
+      std::vector<Eigen::Vector2d> pts;
+      pts.reserve(all.size());
+      const double margin = threshold + max_segment;
+      for (const auto& q : all)
+        if (q.x() >= prob.box.lo.x() - margin && q.x() <= prob.box.hi.x() + margin &&
+            q.y() >= prob.box.lo.y() - margin && q.y() <= prob.box.hi.y() + margin)
+          pts.push_back(q);
       pieces.clear();
       AppendPieces(0, MatchPoints(pts, w.sensor, map, threshold), &pieces);
       for (const ErrorPiece& e : pieces) {
         const auto it = prob.offset.find(e.segment.contour);
         if (it == prob.offset.end()) continue;
         const Contour& c = map.Get(e.segment.contour);
-        out.push_back({pts[static_cast<size_t>(e.i)], pts[static_cast<size_t>(e.j)],
-                       it->second + c.SegmentStart(e.segment.segment), it->second + c.SegmentEnd(e.segment.segment)});
+        const int vs = it->second + c.SegmentStart(e.segment.segment);
+        const int ve = it->second + c.SegmentEnd(e.segment.segment);
+        if (!prob.free[static_cast<size_t>(vs)] && !prob.free[static_cast<size_t>(ve)]) continue;
+        out.push_back({pts[static_cast<size_t>(e.i)], pts[static_cast<size_t>(e.j)], vs, ve});
       }
     }
   return out;
@@ -124,7 +144,7 @@ double Error(const std::vector<FitPiece>& pieces, const std::vector<Eigen::Vecto
 }  // namespace
 
 ContourFittingResult FitContours(const std::vector<int>& ids, const std::vector<MappedScan>& scans, ContourMap& map,
-                                 const ContourFittingOptions& o) {
+                                 const ContourFittingOptions& o, const FitRegion* region) {
   ContourFittingResult out;
   const std::vector<WorldScan> world = ToWorldScans(scans);
   const double thr = o.correspondence_threshold;
@@ -134,8 +154,8 @@ ContourFittingResult FitContours(const std::vector<int>& ids, const std::vector<
     // 1. Degenerate segments.
     for (const int id : ids)
       if (map.Find(id)) out.vertices_removed += map.RemoveDegenerateSegments(id, o.min_segment_length);
-    Problem prob = MakeProblem(ids, map);
-    if (prob.ids.empty()) {
+    Problem prob = MakeProblem(ids, map, region);
+    if (prob.ids.empty() || prob.box.lo.x() > prob.box.hi.x()) {
       out.converged = true;
       out.reason = "fewer than 2 segments";
       break;
@@ -165,7 +185,8 @@ ContourFittingResult FitContours(const std::vector<int>& ids, const std::vector<
       if ((e - s).norm() > 0.0) length += std::abs((e - s).normalized().dot(p.p_j - p.p_i));
     }
     double max_g = 0.0;
-    for (const auto& v : g) max_g = std::max(max_g, v.norm());
+    for (size_t v = 0; v < n; ++v)
+      if (prob.free[v]) max_g = std::max(max_g, g[v].norm());
     if (pieces.empty() || max_g / std::max(length, 1e-9) < o.gradient_tolerance) {
       out.converged = true;
       out.reason = pieces.empty() ? "no correspondences" : "gradient small";
@@ -174,7 +195,9 @@ ContourFittingResult FitContours(const std::vector<int>& ids, const std::vector<
     std::vector<Eigen::Vector2d> dir(n);
     double max_d = 0.0;
     for (size_t v = 0; v < n; ++v) {
-      if (o.precondition) {
+      if (!prob.free[v]) {
+        dir[v].setZero();
+      } else if (o.precondition) {
         const double mu = o.damping * h[v].trace() + 1e-12;
         dir[v] = -(h[v] + mu * Eigen::Matrix2d::Identity()).ldlt().solve(g[v]);
       } else {
@@ -215,7 +238,8 @@ ContourFittingResult FitContours(const std::vector<int>& ids, const std::vector<
     }
   }
   if (out.reason.empty()) out.reason = "iteration limit";
-  const Problem prob = MakeProblem(ids, map);
+  const Problem prob = MakeProblem(ids, map, region);
+  if (prob.ids.empty() || prob.box.lo.x() > prob.box.hi.x()) return out;
   const std::vector<FitPiece> pieces = CollectPieces(prob, world, map, thr);
   out.error_after = Error(pieces, prob.x);
   out.num_pieces = static_cast<int>(pieces.size());

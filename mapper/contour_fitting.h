@@ -59,8 +59,19 @@ struct ContourFittingResult {
   int num_pieces = 0;         // at the end
 };
 
-// Fits the contours `ids` (missing ids are ignored) to `scans`.
+// An axis-aligned box in the world frame, metres.
+struct FitRegion {
+  Eigen::Vector2d lo = Eigen::Vector2d::Zero();
+  Eigen::Vector2d hi = Eigen::Vector2d::Zero();
+  bool Contains(const Eigen::Vector2d& p) const {
+    return p.x() >= lo.x() && p.x() <= hi.x() && p.y() >= lo.y() && p.y() <= hi.y();
+  }
+};
+
+// Fits the contours `ids` (missing ids are ignored) to `scans`. With a region, only the
+// vertices inside it move and only scan data near it is used: the local refit after a scan
+// is inserted costs what the scan's surroundings cost, not what the whole map costs.
 ContourFittingResult FitContours(const std::vector<int>& ids, const std::vector<MappedScan>& scans, ContourMap& map,
-                                 const ContourFittingOptions& options = {});
+                                 const ContourFittingOptions& options = {}, const FitRegion* region = nullptr);
 
 }  // namespace minenav::mapper

@@ -91,7 +91,18 @@ InsertResult ContourMapper::InsertPreprocessed(PreprocessedScan scan, const Pose
   std::vector<int> ids;
   for (const int id : to_fit)
     if (map_.Find(id)) ids.push_back(id);
-  out.fitting = FitContours(ids, scans_, map_, options_.fitting);
+  FitRegion region;
+  region.lo = Eigen::Vector2d::Constant(1e300);
+  region.hi = Eigen::Vector2d::Constant(-1e300);
+  for (const PartialScan& p : scans_.back().scan.partial_scans)
+    for (const Eigen::Vector2d& q : p.points) {
+      const Eigen::Vector2d w = out.pose * q;
+      region.lo = region.lo.cwiseMin(w);
+      region.hi = region.hi.cwiseMax(w);
+    }
+  region.lo -= Eigen::Vector2d::Constant(options_.local_fit_margin);
+  region.hi += Eigen::Vector2d::Constant(options_.local_fit_margin);
+  out.fitting = FitContours(ids, scans_, map_, options_.fitting, options_.local_fit_margin >= 0.0 ? &region : nullptr);
   if (options_.refine_after_each_scan) {
     Refine();
     out.pose = scans_.back().pose;

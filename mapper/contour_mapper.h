@@ -46,6 +46,9 @@ struct ContourMapperOptions {
   double max_correction_rotation = 0.35;
   // m; refuse a scan whose RMS distance to the contours it matched stays above this.
   double max_rms_distance = 0.06;
+  // m; after an insert only contour vertices within the new scan's bounding box grown by
+  // this margin are refitted (the rest of the map keeps its shape). < 0: refit whole contours.
+  double local_fit_margin = 1.0;
   // Run concurrent refinement after every accepted scan (slow; thesis 4.7 suggests it for
   // maximum accuracy). Otherwise call Refine() when wanted.
   bool refine_after_each_scan = false;
