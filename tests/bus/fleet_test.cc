@@ -246,15 +246,24 @@ TEST_F(BusTest, ScriptedDriveIsRecordedCompletelyAndReplaysIdentically) {
   const Pose2 after_turn = FromLcm(truth.back().msg.pose);
   const double forward_s = static_cast<double>(commands[stop1].timestamp - commands[go].timestamp) * 1e-6;
   const double distance = TranslationDistance(before, after_forward);
-  // One 50 ms integration tick of slack at each end, plus scheduling jitter.
-  EXPECT_NEAR(distance, kSpeed * forward_s, 0.04) << "forward for " << forward_s << " s";
+  // One 50 ms integration tick of slack at each end, plus scheduling jitter on a loaded
+  // machine (a vehicle_sim held up for 0.1 s keeps the old command 0.1 s longer).
+  EXPECT_NEAR(distance, kSpeed * forward_s, 0.06) << "forward for " << forward_s << " s";
   EXPECT_NEAR(distance, kSpeed * 3.0, 0.09);
   EXPECT_NEAR(after_forward.theta, before.theta, 1e-6) << "a straight drive must not turn";
   const double direction = std::atan2(after_forward.y - before.y, after_forward.x - before.x);
   EXPECT_NEAR(NormalizeAngle(direction - before.theta), 0.0, 1e-3) << "moved along the heading";
   const double turn_s = static_cast<double>(commands[stop2].timestamp - commands[turn].timestamp) * 1e-6;
   const double turned = NormalizeAngle(after_turn.theta - after_forward.theta);
-  EXPECT_NEAR(turned, kTurnRate * turn_s, 0.04) << "turn in place for " << turn_s << " s";
+  EXPECT_NEAR(turned, kTurnRate * turn_s, 0.06) << "turn in place for " << turn_s << " s";
+  // While moving, the truth reports exactly the commanded speed and yaw rate.
+  for (const auto& l : truth) {
+    if (std::abs(l.msg.v) > 1e-9) {
+      EXPECT_NEAR(l.msg.v, kSpeed, 1e-9);
+    } else if (std::abs(l.msg.omega) > 1e-9) {
+      EXPECT_NEAR(l.msg.omega, kTurnRate, 1e-9);
+    }
+  }
   EXPECT_NEAR(turned, kTurnRate * 2.0, 0.09);
   EXPECT_LT(TranslationDistance(after_forward, after_turn), 1e-6) << "turning in place must not move";
 
