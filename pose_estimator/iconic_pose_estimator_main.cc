@@ -8,11 +8,12 @@
 // LINE_MAP or contour_map_t on CONTOUR_MAP), publishes pose_estimate_t on POSE_IPE per
 // scan and a HEARTBEAT.
 //
-// Initial estimate of a scan (--initial auto): an ODOMETRY reading with the scan's exact
-// utime is the scan's initial estimate in the map frame (offline surveys, DESIGN.md);
-// otherwise the last converged estimate moved by the odometry increment since that scan
-// (odometry interpolated at the scan's utime), or the odometry pose itself for the first
-// scan. A scan waits until odometry at or after its utime has arrived.
+// Initial estimate of a scan (--initial auto): in batch, an ODOMETRY reading with the
+// scan's exact utime is the scan's initial estimate in the map frame (offline surveys,
+// DESIGN.md); otherwise (and always live, where odometry drifts) the last converged
+// estimate moved by the odometry increment since that scan (odometry interpolated at the
+// scan's utime), or the odometry pose itself for the first scan. A scan waits until
+// odometry at or after its utime has arrived.
 
 #include <zlib.h>
 
@@ -65,7 +66,7 @@ void Declare(ConfigSchema& s, ProcessOptions& p, IconicEstimatorOptions& e) {
               "simultaneous (3.5, batch only)",
               {"surveyed", "scan-map", "first-scan", "all-previous", "simultaneous"});
   s.AddString("initial", &p.initial,
-              "initial estimate: auto (odometry with the scan's utime, else chained), odometry, chained",
+              "initial estimate: auto (batch: odometry with the scan's utime, else chained), odometry, chained",
               {"auto", "odometry", "chained"});
   s.AddDouble("max_odometry_gap", &p.max_odometry_gap, "s",
               "farthest odometry reading from a scan's utime that may serve for it", 0.0, 3600.0);
@@ -237,7 +238,7 @@ int Main(int argc, char** argv) {
     }
     const bool exact = HasExactOdometry(odometry, scan.utime);
     Pose2 initial = *odo;
-    if (last && (p.initial == "chained" || (p.initial == "auto" && !exact)))
+    if (last && (p.initial == "chained" || (p.initial == "auto" && !(exact && batch))))
       initial = last->first * Between(last->second, *odo);
     if (eo.mode == IconicMode::kSimultaneous) {
       all_scans.push_back(scan);

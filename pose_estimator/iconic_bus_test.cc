@@ -1,0 +1,145 @@
+// The iconic pose estimator live on a real LCM bus, inside a private network namespace
+// (run through tests/bus/private_net.sh, which sets MINENAV_IN_PRIVATE_NET and
+// LCM_DEFAULT_URL with a port of its own): vehicle_sim drives through the synthetic mine,
+// ladar_driver scans it, iconic_pose_estimator matches every scan to the world published
+// as the surveyed map (LINE_MAP) and publishes POSE_IPE, which must track SIM_TRUTH.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <csignal>
+#include <cstdlib>
+#include <filesystem>
+#include <map>
+
+#include "common/angle.h"
+#include "common/node/bus.h"
+#include "common/node/conversions.h"
+#include "common/node/lcm_bus.h"
+#include "minenav/drive_command_t.hpp"
+#include "minenav/heartbeat_t.hpp"
+#include "minenav/pose_estimate_t.hpp"
+#include "minenav/vehicle_truth_t.hpp"
+#include "tests/child_process.h"
+
+namespace minenav {
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+using testing::ChildProcess;
+using testing::ReadTextFile;
+
+struct TempDir {
+  fs::path path = fs::temp_directory_path() / ("minenav_ipe_bus_test_" + std::to_string(::getpid()));
+  TempDir() { fs::create_directories(path); }
+  ~TempDir() {
+    std::error_code ec;
+    fs::remove_all(path, ec);
+  }
+  std::string operator/(const std::string& name) const { return (path / name).string(); }
+};
+
+TEST(IconicBusTest, PoseIpeTracksSimTruth) {
+  const char* in_private_net = std::getenv("MINENAV_IN_PRIVATE_NET");
+  ASSERT_TRUE(in_private_net != nullptr && std::string(in_private_net) == "1")
+      << "bus tests must run inside tests/bus/private_net.sh (a private network namespace)";
+  const char* url = std::getenv("LCM_DEFAULT_URL");
+  ASSERT_TRUE(url != nullptr && url[0] != '\0') << "private_net.sh --port N sets LCM_DEFAULT_URL";
+
+  TempDir dir;
+  LcmBus bus(url, 1000);
+  std::map<int64_t, Pose2> truth;  // utime -> true pose
+  std::vector<pose_estimate_t> estimates;
+  int ipe_heartbeats = 0;
+  Subscribe<vehicle_truth_t>(bus, "SIM_TRUTH", [&](const vehicle_truth_t& m) { truth[m.utime] = FromLcm(m.pose); });
+  Subscribe<pose_estimate_t>(bus, "POSE_IPE", [&](const pose_estimate_t& m) { estimates.push_back(m); });
+  Subscribe<heartbeat_t>(bus, "HEARTBEAT", [&](const heartbeat_t& m) {
+    if (m.process == "iconic_pose_estimator") ++ipe_heartbeats;
+  });
+
+  ChildProcess ipe({MINENAV_IPE_BIN, "--mode", "surveyed", "--min-threshold", "0.15", "--initial", "chained"},
+                   dir / "ipe.txt");
+  ChildProcess ladar({MINENAV_LADAR_DRIVER_BIN, "--sensor", "typhoon", "--seed", "5"}, dir / "ladar.txt");
+  ChildProcess sim({MINENAV_VEHICLE_SIM_BIN, "--generate", "mine", "--seed", "3", "--max-forward-speed", "0.5",
+                    "--max-turn-in-place-rate", "0.3", "--odometry-scale-error", "0.05",
+                    "--odometry-heading-drift-per-metre", "0.02"},
+                   dir / "sim.txt");
+  auto pump = [&](double seconds, const std::function<bool()>& done) {
+    const auto end = Clock::now() + std::chrono::duration<double>(seconds);
+    while (Clock::now() < end) {
+      if (done && done()) return true;
+      bus.HandleFor(10'000);
+    }
+    return done ? done() : true;
+  };
+  ASSERT_TRUE(pump(30.0, [&] { return estimates.size() >= 3; }))
+      << "no POSE_IPE within 30 s\nipe: " << ReadTextFile(dir / "ipe.txt") << "\nladar: " << ReadTextFile(dir / "ladar.txt")
+      << "\nsim: " << ReadTextFile(dir / "sim.txt");
+
+  // Drive: forward 4 s, turn in place 3 s, forward 3 s, commands at 10 Hz. The odometry is
+  // made poor (5 % scale error, 0.02 rad/m heading drift) so that tracking needs the map.
+  struct Phase {
+    int8_t mode;
+    double v, omega, seconds;
+  };
+  const std::vector<Phase> script = {{drive_command_t::VELOCITY, 0.4, 0.0, 4.0},
+                                     {drive_command_t::TURN_IN_PLACE, 0.0, 0.25, 3.0},
+                                     {drive_command_t::VELOCITY, 0.4, 0.0, 3.0},
+                                     {drive_command_t::STOP, 0.0, 0.0, 1.0}};
+  int64_t seq = 0;
+  for (const Phase& phase : script) {
+    const auto end = Clock::now() + std::chrono::duration<double>(phase.seconds);
+    auto next = Clock::now();
+    while (Clock::now() < end) {
+      drive_command_t c{};
+      c.utime = seq;
+      c.seq = seq++;
+      c.mode = phase.mode;
+      c.v = phase.v;
+      c.omega = phase.omega;
+      c.timeout = 0.5;
+      Publish(bus, "DRIVE_COMMAND", c);
+      next += std::chrono::milliseconds(100);
+      while (Clock::now() < next) bus.HandleFor(5'000);
+    }
+  }
+  pump(1.0, nullptr);
+  sim.Signal(SIGTERM);
+  ladar.Signal(SIGTERM);
+  ipe.Signal(SIGTERM);
+  EXPECT_EQ(sim.Wait(10.0), 0) << ReadTextFile(dir / "sim.txt");
+  EXPECT_EQ(ladar.Wait(10.0), 0) << ReadTextFile(dir / "ladar.txt");
+  EXPECT_EQ(ipe.Wait(10.0), 0) << ReadTextFile(dir / "ipe.txt");
+
+  // Each estimate against the truth interpolated at its scan's utime (the ladar casts each
+  // revolution from that pose). Most must converge within 3 cm and 0.3 deg of the truth.
+  ASSERT_GE(estimates.size(), 60u) << ReadTextFile(dir / "ipe.txt");
+  int compared = 0, good = 0;
+  double worst = 0.0;
+  for (const pose_estimate_t& e : estimates) {
+    const auto after = truth.lower_bound(e.utime);
+    if (after == truth.end() || after == truth.begin()) continue;
+    const auto before = std::prev(after);
+    const double f = after->first == e.utime ? 1.0
+                                              : static_cast<double>(e.utime - before->first) /
+                                                    static_cast<double>(after->first - before->first);
+    const Pose2& a = before->second;
+    const Pose2& b = after->second;
+    const Pose2 true_pose(a.x + f * (b.x - a.x), a.y + f * (b.y - a.y),
+                          NormalizeAngle(a.theta + f * NormalizeAngle(b.theta - a.theta)));
+    ++compared;
+    const Pose2 est = FromLcm(e.pose);
+    const double err = TranslationDistance(est, true_pose);
+    if (e.converged) worst = std::max(worst, err);
+    if (e.converged && err < 0.03 && HeadingDistance(est, true_pose) < DegToRad(0.3)) ++good;
+    EXPECT_EQ(e.source, "ipe");
+    EXPECT_GT(e.compute_time, 0.0f);
+  }
+  EXPECT_GE(compared, static_cast<int>(estimates.size()) - 2);
+  EXPECT_GE(good, compared - 1) << "worst converged error " << worst << " m\n" << ReadTextFile(dir / "ipe.txt");
+  EXPECT_GE(ipe_heartbeats, 5);
+}
+
+}  // namespace
+}  // namespace minenav
