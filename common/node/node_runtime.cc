@@ -91,6 +91,8 @@ void NodeRuntime::Start() {
                        << (options_.log_out.empty() ? "" : ", writing " + options_.log_out);
   } else {
     const std::string url = ResolveLcmUrl(options_.lcm_url);
+    if (url.find("://") == std::string::npos)
+      throw UsageError("LCM URL '" + url + "' is not a URL (e.g. " + kDefaultLcmUrl + ")");
     bus_ = std::make_unique<LcmBus>(url, options_.queue_capacity);
     MINENAV_LOG(kDebug) << "LCM on " << url;
   }

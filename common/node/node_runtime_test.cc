@@ -184,6 +184,9 @@ TEST(NodeRuntimeBatch, BadOptionsAndFiles) {
   EXPECT_THROW(NodeRuntime("n", options).Start(), InputError);
   options.log_out = options.log;
   EXPECT_THROW(NodeRuntime("n", options).Start(), UsageError);
+  NodeOptions live;
+  live.lcm_url = "239.255.76.67:7667";
+  EXPECT_THROW(NodeRuntime("n", live).Start(), UsageError);
 }
 
 TEST(NodeRuntimeLive, HeartbeatsCountsAndTimersOnAFakeBus) {
