@@ -79,7 +79,7 @@ void Declare(ConfigSchema& s, VehicleSimOptions& o) {
               "initial vehicle pose 'x,y,theta' (m, m, rad or e.g. 90deg); auto = the generator's "
               "first survey station, or 0,0,0 for --world");
   s.AddDouble("rate", &o.rate, "Hz", "integration and SIM_TRUTH/ODOMETRY publishing rate", 0.1, 1000.0);
-  s.AddDouble("map_period", &o.map_period, "s", "republish SIM_WORLD and LINE_MAP this often (and on change)",
+  s.AddDouble("map_period", &o.map_period, "s", "republish SIM_WORLD and LINE_MAP this often",
               0.05, 3600.0);
   SkidSteerOptions& v = o.vehicle;
   s.AddDouble("max_forward_speed", &v.max_forward_speed, "m/s", "forward speed limit", 0.0, 10.0);
@@ -193,9 +193,9 @@ int Main(int argc, char** argv) {
   World world(sc.world);
   if (!o.world_out.empty()) world.Save(o.world_out);
   if (!o.map_out.empty()) World(sc.map).Save(o.map_out);
-  MINENAV_LOG(kInfo) << sc.name << ": " << world.size() << " segments, start " << sc.start;
 
   runtime.Start();
+  MINENAV_LOG(kInfo) << sc.name << ": " << world.size() << " segments, start " << sc.start;
   Bus& bus = runtime.bus();
   SkidSteerVehicle vehicle(o.vehicle, sc.start);
   DeadReckoning odometry(o.odometry, sc.start, static_cast<uint64_t>(o.seed) * 7919 + 1);
@@ -205,6 +205,13 @@ int Main(int argc, char** argv) {
     DriveCommand c = FromLcm(m);
     c.utime = runtime.NowUtime();
     command = c;
+  });
+
+  // The world first, so a ladar starting with us has it before the first truth sample.
+  runtime.AddTimer(o.map_period, [&](int64_t now) {
+    Publish(bus, o.world_channel,
+            SegmentsToLcm(world.Segments(), now, static_cast<int64_t>(world.version()), sc.name));
+    Publish(bus, o.map_channel, SegmentsToLcm(sc.map, now, 0, sc.name + " (surveyed map)"));
   });
 
   std::optional<int64_t> last_tick;
@@ -236,11 +243,6 @@ int Main(int argc, char** argv) {
     ++seq;
   });
 
-  runtime.AddTimer(o.map_period, [&](int64_t now) {
-    Publish(bus, o.world_channel,
-            SegmentsToLcm(world.Segments(), now, static_cast<int64_t>(world.version()), sc.name));
-    Publish(bus, o.map_channel, SegmentsToLcm(sc.map, now, 0, sc.name + " (surveyed map)"));
-  });
   return runtime.Run();
 }
 
