@@ -208,7 +208,7 @@ TEST(LogToolCli, InfoExportRenderOnASmallLog) {
 }
 
 TEST(LogToolCli, HelpForEverySubcommand) {
-  for (const std::string sub : {"survey", "generate", "info", "export", "render"}) {
+  for (const std::string sub : {"survey", "generate", "info", "export", "render", "record"}) {
     const RunResult r = LogTool(sub + " --help");
     EXPECT_EQ(r.exit_code, 0) << sub << ": " << r.err;
     EXPECT_NE(r.out.find("Usage: log_tool " + sub), std::string::npos) << r.out;
@@ -273,6 +273,11 @@ TEST(LogToolBadInput, BadFlags) {
                    "is not one of", {log, truth});
   ExpectInputError(LogTool("render " + log + " --out " + truth), "cannot open", {log, truth});
   ExpectInputError(LogTool("export"), "expected LOG", {});
+  // record fails before touching the bus.
+  std::ofstream(TempPath("exists.lcm")) << "x";
+  ExpectInputError(LogTool("record --out " + TempPath("exists.lcm")), "refusing to overwrite", {});
+  ExpectInputError(LogTool("record --channels '(' --out " + log), "not a valid regex", {log});
+  ExpectInputError(LogTool("record"), "--out is required", {});
 }
 
 // A log whose LADAR_SCAN message has a wrong fingerprint or a truncated payload.

@@ -13,6 +13,7 @@ int RunExportCommand(const std::vector<std::string>& args);
 int RunRenderCommand(const std::vector<std::string>& args);
 int RunSurveyCommand(const std::vector<std::string>& args);
 int RunGenerateCommand(const std::vector<std::string>& args);
+int RunRecordCommand(const std::vector<std::string>& args);
 
 // Removes every occurrence of --name VALUE / --name=VALUE from args and returns the values
 // in order (for flags that may repeat, which ConfigSchema does not support).

@@ -1,5 +1,5 @@
 // log_tool: make, inspect, export and draw LCM logs of MINENAV runs (logger/README.md).
-//   log_tool survey | generate | info | export | render  [--help]
+//   log_tool survey | generate | info | export | render | record  [--help]
 
 #include <cstdio>
 #include <exception>
@@ -25,6 +25,7 @@ constexpr const char* kOverview =
     "  info      channels, counts, rates, times, decode errors and sequence gaps of a log\n"
     "  export    poses of a channel to a poses CSV; scans to a scans CSV\n"
     "  render    an SVG of world, map, scans at their poses and trajectories\n"
+    "  record    record the bus into a log without dropping bursts (record.sh --engine log_tool)\n"
     "\n"
     "Exit codes: 0 ok, 2 bad flags or input (one line on stderr, no output file written),\n"
     "3 failure while running.\n";
@@ -50,6 +51,7 @@ int main(int argc, char** argv) {
     if (sub == "info") return minenav::RunInfoCommand(args);
     if (sub == "export") return minenav::RunExportCommand(args);
     if (sub == "render") return minenav::RunRenderCommand(args);
+    if (sub == "record") return minenav::RunRecordCommand(args);
     std::fprintf(stderr, "log_tool: error: unknown subcommand '%s' (see log_tool --help)\n", sub.c_str());
     return minenav::kExitUsage;
   } catch (const minenav::UsageError& e) {

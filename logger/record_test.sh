@@ -72,8 +72,21 @@ status=0
 "$record" --out "$dir/split.lcm" --split-mb 0.002 --duration 1 --quiet 2>/dev/null || status=$?
 [ "$status" -eq 2 ] || fail "split overwrite: exit $status, expected 2"
 
+echo "== --engine log_tool records the same way"
+"$record" --engine log_tool --log-tool "$log_tool" --out "$dir/engine.lcm" --channels 'SIM_TRUTH|ODOMETRY' \
+    --duration 3.5 --quiet >"$dir/engine.txt" &
+rec_pid=$!
+sleep 0.7
+"$vehicle_sim" --generate mine --run-for 2 --heartbeat-period 0 2>/dev/null
+wait "$rec_pid"
+[ "$(cat "$dir/engine.txt")" = "$dir/engine.lcm" ] || fail "engine log_tool printed '$(cat "$dir/engine.txt")'"
+read -r count missing first last <<<"$(channel_stats "$dir/engine.lcm" ODOMETRY)"
+[ "$count" -ge 30 ] && [ "$missing" -eq 0 ] || fail "engine log_tool: $count ODOMETRY, $missing missing"
+[ "$(channel_stats "$dir/engine.lcm" SIM_WORLD)" = "none" ] || fail "engine log_tool: unselected channel SIM_WORLD logged"
+echo "   $count ODOMETRY messages, none missing"
+
 echo "== bad flags"
-for bad in "--channels (" "--split-mb lots" "--duration soon" "--recv-buf big" "--frobnicate" "--lcm-url http://x"; do
+for bad in "--channels (" "--engine tape" "--engine log_tool --log-tool /nonexistent" "--split-mb lots" "--duration soon" "--recv-buf big" "--frobnicate" "--lcm-url http://x"; do
   status=0
   # shellcheck disable=SC2086
   "$record" --dir "$dir/bad" --duration 0.5 --quiet $bad 2>"$dir/err.txt" >/dev/null || status=$?
