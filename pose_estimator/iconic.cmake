@@ -20,6 +20,7 @@ minenav_test(NAME iconic_test NO_LCM
     ${CMAKE_CURRENT_LIST_DIR}/iconic_matcher_test.cc
     ${CMAKE_CURRENT_LIST_DIR}/multi_scan_matcher_test.cc
     ${CMAKE_CURRENT_LIST_DIR}/iconic_estimator_test.cc
+    ${CMAKE_CURRENT_LIST_DIR}/scan_polylines_test.cc
     ${CMAKE_CURRENT_LIST_DIR}/iconic_test_world.cc
   LIBS minenav_iconic)
 

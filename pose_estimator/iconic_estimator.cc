@@ -145,6 +145,14 @@ std::vector<IconicMatchResult> EstimateSequence(const std::vector<LadarScan>& sc
     return results;
   }
   // Simultaneous: scans with usable points join; the first usable one is fixed.
+  std::vector<Pose2> start = initial_poses;
+  if (options.seed_simultaneous) {
+    IconicEstimatorOptions seed = options;
+    seed.mode = IconicMode::kAllPrevious;
+    const std::vector<IconicMatchResult> seeded = EstimateSequence(scans, initial_poses, map, seed);
+    for (size_t k = 0; k < scans.size(); ++k)
+      if (seeded[k].converged) start[k] = seeded[k].pose;
+  }
   std::vector<MultiScanInput> inputs;
   std::vector<int> input_of(scans.size(), -1);
   results.resize(scans.size());
@@ -152,8 +160,8 @@ std::vector<IconicMatchResult> EstimateSequence(const std::vector<LadarScan>& sc
     std::string problem;
     MultiScanInput in;
     in.points = ValidScanPoints(scans[k], &problem);
-    in.initial = initial_poses[k];
-    results[k].pose = initial_poses[k];
+    in.initial = start[k];
+    results[k].pose = start[k];
     results[k].num_points = static_cast<int>(in.points.size());
     if (!problem.empty()) {
       results[k].status = problem;

@@ -46,7 +46,10 @@ struct IconicEstimatorOptions {
   // odometry motion since that scan; when false they are used as they are (an offline
   // survey's initial estimates in the map frame). Default false.
   bool chain_odometry = false;
-  // Simultaneous mode only.
+  // Simultaneous mode only. When true, the poses first go through kAllPrevious (scan by
+  // scan, which tolerates dead-reckoning error) and the simultaneous adjustment starts
+  // from its converged estimates; when false it starts from the given poses. Default true.
+  bool seed_simultaneous = true;
   double max_pair_distance = 60.0;  // m
   int point_stride = 1;
 };
