@@ -24,9 +24,10 @@ struct SpanLine {
   ScanPoint first, last;  // first and last inlier in scan order
 };
 
+// `fit_out` receives the last fit even when the span is rejected (for splitting).
 std::optional<SpanLine> FitSpan(const std::vector<ScanPoint>& span,
                                 const std::vector<Eigen::Vector2d>& exclude,
-                                const ExtractionOptions& o) {
+                                const ExtractionOptions& o, LineFit* fit_out) {
   std::vector<size_t> idx;
   for (size_t i = 0; i < span.size(); ++i) {
     bool near = false;
@@ -36,11 +37,38 @@ std::optional<SpanLine> FitSpan(const std::vector<ScanPoint>& span,
   if (static_cast<int>(idx.size()) < o.min_line_points) return std::nullopt;
   const size_t total = idx.size();
   SpanLine s;
-  std::vector<size_t> keep = idx;
-  for (int iter = 0; iter < 4; ++iter) {
-    IncrementalLineFitter fitter(span[keep.front()].point);
+  // Start from the line through two points of the span that has the most points within
+  // 2 sigma (deterministic pairs a third of the span apart), so a column jutting from
+  // the wall or clutter against it cannot tilt the first fit; then refine by refitting
+  // to the points within outlier_factor sigma.
+  std::vector<size_t> keep;
+  {
+    const size_t m = idx.size();
+    const size_t gap = std::max<size_t>(1, m / 3);
+    const size_t tries = std::min<size_t>(24, m - gap);
+    size_t best = 0;
+    for (size_t t = 0; t < tries; ++t) {
+      const size_t j = t * (m - gap) / tries;
+      const Eigen::Vector2d a = span[idx[j]].point, b = span[idx[j + gap]].point;
+      if ((b - a).norm() < 1e-9) continue;
+      const Eigen::Vector2d d = (b - a).normalized();
+      const Eigen::Vector2d n(-d.y(), d.x());
+      std::vector<size_t> in;
+      for (size_t i : idx) {
+        if (std::abs(n.dot(span[i].point - a)) <= 2.0 * o.noise_sigma) in.push_back(i);
+      }
+      if (in.size() > best) {
+        best = in.size();
+        keep = std::move(in);
+      }
+    }
+    if (static_cast<int>(keep.size()) < o.min_line_points) keep = idx;
+  }
+  for (int iter = 0; iter < 6; ++iter) {
+    IncrementalLineFitter fitter(span[keep.front()].point, o.noise_sigma);
     for (size_t i : keep) fitter.Add(span[i].point);
     s.fit = fitter.Fit();
+    *fit_out = s.fit;
     if (!s.fit.valid) return std::nullopt;
     const Eigen::Vector2d n(-s.fit.direction.y(), s.fit.direction.x());
     std::vector<size_t> next;
@@ -61,6 +89,45 @@ std::optional<SpanLine> FitSpan(const std::vector<ScanPoint>& span,
     return std::nullopt;
   }
   return s;
+}
+
+// Lines of a span in scan order. A run of consecutive points off the line inside the span
+// (a column jutting from the wall, clutter against it) splits it, and each side is fit on
+// its own, so the run neither tilts the line nor hides the wall on either side.
+std::vector<SpanLine> FitSpanLines(const std::vector<ScanPoint>& span,
+                                   const std::vector<Eigen::Vector2d>& exclude,
+                                   const ExtractionOptions& o, int depth = 0) {
+  LineFit fit;
+  const std::optional<SpanLine> line = FitSpan(span, exclude, o, &fit);
+  if (depth < 4 && fit.valid) {
+    const Eigen::Vector2d n(-fit.direction.y(), fit.direction.x());
+    const double limit = o.outlier_factor * o.noise_sigma;
+    int best_start = -1, best_len = 0, start = -1, len = 0;
+    for (int i = 0; i < static_cast<int>(span.size()); ++i) {
+      if (std::abs(n.dot(span[static_cast<size_t>(i)].point - fit.centroid)) > limit) {
+        if (len == 0) start = i;
+        ++len;
+        if (len > best_len) {
+          best_len = len;
+          best_start = start;
+        }
+      } else {
+        len = 0;
+      }
+    }
+    const int after = best_start + best_len;
+    if (best_len >= o.split_run_points && best_start >= o.min_line_points &&
+        static_cast<int>(span.size()) - after >= o.min_line_points) {
+      const std::vector<ScanPoint> left(span.begin(), span.begin() + best_start);
+      const std::vector<ScanPoint> right(span.begin() + after, span.end());
+      std::vector<SpanLine> out = FitSpanLines(left, exclude, o, depth + 1);
+      std::vector<SpanLine> more = FitSpanLines(right, exclude, o, depth + 1);
+      out.insert(out.end(), more.begin(), more.end());
+      return out;
+    }
+  }
+  if (line) return {*line};
+  return {};
 }
 
 Eigen::Vector2d Project(const LineFit& f, const Eigen::Vector2d& p) {
@@ -226,12 +293,12 @@ ExtractedFeatures ExtractFeatures(const LadarScan& scan, const ExtractionOptions
                          k, (k + 1) % nc});
       }
     }
-    std::vector<std::optional<SpanLine>> lines(spans.size());
+    std::vector<std::vector<SpanLine>> lines(spans.size());
     for (size_t k = 0; k < spans.size(); ++k) {
       std::vector<Eigen::Vector2d> exclude;
       if (spans[k].corner_before >= 0) exclude.push_back(corners[static_cast<size_t>(spans[k].corner_before)].vertex);
       if (spans[k].corner_after >= 0) exclude.push_back(corners[static_cast<size_t>(spans[k].corner_after)].vertex);
-      lines[k] = FitSpan(spans[k].points, exclude, o);
+      lines[k] = FitSpanLines(spans[k].points, exclude, o);
     }
     auto span_before = [&](int k) { return pc.closed ? (k + nc - 1) % nc : k; };
     auto span_after = [&](int k) { return pc.closed ? k : k + 1; };
@@ -243,8 +310,10 @@ ExtractedFeatures ExtractFeatures(const LadarScan& scan, const ExtractionOptions
       Eigen::Vector2d v = c.vertex, arm_before = c.arm_before, arm_after = c.arm_after;
       int points = c.num_points;
       double rms = c.fit_rms;
-      const auto& lb = lines[static_cast<size_t>(span_before(k))];
-      const auto& la = lines[static_cast<size_t>(span_after(k))];
+      const auto& lbs = lines[static_cast<size_t>(span_before(k))];
+      const auto& las = lines[static_cast<size_t>(span_after(k))];
+      const SpanLine* lb = lbs.empty() ? nullptr : &lbs.back();
+      const SpanLine* la = las.empty() ? nullptr : &las.front();
       Eigen::Vector2d w;
       if (lb && la && IntersectFits(lb->fit, la->fit, &w) && (w - c.vertex).norm() < o.corner.arm_length) {
         v = w;
@@ -262,36 +331,39 @@ ExtractedFeatures ExtractFeatures(const LadarScan& scan, const ExtractionOptions
 
     // Lines, from the corner (or the projected first / last inlier) to the next.
     for (size_t k = 0; k < spans.size(); ++k) {
-      if (!lines[k]) continue;
-      const SpanLine& s = *lines[k];
-      const int cb = spans[k].corner_before, ca = spans[k].corner_after;
-      const Eigen::Vector2d a = cb >= 0 ? Project(s.fit, vertex[static_cast<size_t>(cb)]) : Project(s.fit, s.first.point);
-      const Eigen::Vector2d b = ca >= 0 ? Project(s.fit, vertex[static_cast<size_t>(ca)]) : Project(s.fit, s.last.point);
-      if ((b - a).norm() < o.min_line_length) continue;
-      const bool ccw = a.x() * b.y() - a.y() * b.x() >= 0.0;  // as seen from the sensor
-      Feature f = MakeLine(ccw ? a : b, ccw ? b : a);
-      f.num_points = s.inliers;
-      f.fit_rms = s.fit.rms;
-      out.features.push_back(f);
+      const size_t nl = lines[k].size();
+      for (size_t j = 0; j < nl; ++j) {
+        const SpanLine& s = lines[k][j];
+        const int cb = j == 0 ? spans[k].corner_before : -1;
+        const int ca = j + 1 == nl ? spans[k].corner_after : -1;
+        const Eigen::Vector2d a = cb >= 0 ? Project(s.fit, vertex[static_cast<size_t>(cb)]) : Project(s.fit, s.first.point);
+        const Eigen::Vector2d b = ca >= 0 ? Project(s.fit, vertex[static_cast<size_t>(ca)]) : Project(s.fit, s.last.point);
+        if ((b - a).norm() < o.min_line_length) continue;
+        const bool ccw = a.x() * b.y() - a.y() * b.x() >= 0.0;  // as seen from the sensor
+        Feature f = MakeLine(ccw ? a : b, ccw ? b : a);
+        f.num_points = s.inliers;
+        f.fit_rms = s.fit.rms;
+        out.features.push_back(f);
 
-      // Occlusion corners at occluding piece ends covered by this line. The surface ends
-      // somewhere between the last ray that saw it and the next: take the middle.
-      if (!o.occlusion_corners || pc.closed) continue;
-      for (int side = 0; side < 2; ++side) {
-        const bool occluding = side == 0 ? (k == 0 && pc.occluding_start)
-                                         : (k + 1 == spans.size() && pc.occluding_end);
-        if (!occluding) continue;
-        const ScanPoint& last = side == 0 ? s.first : s.last;
-        const double outward = side == 0 ? -half_step : half_step;
-        const Eigen::Vector2d v = RayOnLine(s.fit, last.bearing + outward);
-        const Eigen::Vector2d seen = RayOnLine(s.fit, last.bearing);
-        const Eigen::Vector2d inward = ((side == 0 ? b : a) - v).normalized();
-        Feature c = MakeCorner(v, inward, v.normalized(), true);
-        c.num_points = s.inliers;
-        c.fit_rms = s.fit.rms;
-        const double span_len = 2.0 * (v - seen).norm();
-        c.position_variance = span_len * span_len / 12.0;
-        out.features.push_back(c);
+        // Occlusion corners at occluding piece ends covered by this line. The surface ends
+        // somewhere between the last ray that saw it and the next: take the middle.
+        if (!o.occlusion_corners || pc.closed) continue;
+        for (int side = 0; side < 2; ++side) {
+          const bool occluding = side == 0 ? (k == 0 && j == 0 && pc.occluding_start)
+                                           : (k + 1 == spans.size() && j + 1 == nl && pc.occluding_end);
+          if (!occluding) continue;
+          const ScanPoint& last = side == 0 ? s.first : s.last;
+          const double outward = side == 0 ? -half_step : half_step;
+          const Eigen::Vector2d v = RayOnLine(s.fit, last.bearing + outward);
+          const Eigen::Vector2d seen = RayOnLine(s.fit, last.bearing);
+          const Eigen::Vector2d inward = ((side == 0 ? b : a) - v).normalized();
+          Feature c = MakeCorner(v, inward, v.normalized(), true);
+          c.num_points = s.inliers;
+          c.fit_rms = s.fit.rms;
+          const double span_len = 2.0 * (v - seen).norm();
+          c.position_variance = span_len * span_len / 12.0;
+          out.features.push_back(c);
+        }
       }
     }
   }

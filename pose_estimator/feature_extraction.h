@@ -6,7 +6,8 @@
 //   2. Slide the corner operator (corner_operator.h) along each piece.
 //   3. Fit a line to the points between neighbouring corners (or piece ends). The fit
 //      drops points farther than outlier_factor * noise_sigma from the line and refits,
-//      so clutter against a wall or a small column does not bend the line; a span that
+//      so clutter against a wall does not bend the line; a run of consecutive points off
+//      the line (a small column jutting out) splits the span into two lines; a span that
 //      is not straight (curved rib, rubble) gives no line.
 //   4. A corner between two fitted lines is moved to their intersection (hundreds of
 //      points instead of one arm's worth). The visible end of a piece that hides something
@@ -28,6 +29,7 @@ struct ExtractionOptions {
   double outlier_factor = 3.0;        // 1, line fits drop points beyond this many sigma
   double corner_gap = 0.15;           // m, points this close to a corner stay out of line fits
   int min_line_points = 8;            // points a line needs (after dropping outliers)
+  int split_run_points = 3;           // a run of this many points off a line splits it
   double min_line_length = 0.5;       // m, shorter lines are not features
   double max_line_rms = 0.13;         // m, RMS of the line fit after dropping outliers (~1.3 sigma)
   double min_inlier_fraction = 0.7;   // 1, of the span's points that must lie on the line

@@ -22,7 +22,9 @@ struct Scene {
 Scene MakeScene(const std::vector<Segment>& map_segments, const std::vector<Segment>& world,
                 const Pose2& truth, const Pose2& guess, double sigma = 0.0) {
   Scene s;
-  s.sensed = ExtractFeatures(SimulateScan(world, truth, 1000, sigma)).features;
+  ExtractionOptions extraction;
+  if (sigma > 0.0) extraction.noise_sigma = sigma;  // the extractor knows its sensor
+  s.sensed = ExtractFeatures(SimulateScan(world, truth, 1000, sigma), extraction).features;
   const PredictedFeatures pred = PredictFeatures(BuildFeatureMap(map_segments).map, guess.translation());
   for (const Feature& f : pred.features) {
     s.model_world.push_back(f);

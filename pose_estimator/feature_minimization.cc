@@ -138,6 +138,7 @@ MinimizationResult MinimizeFeatureError(const std::vector<Correspondence>& input
   }
   Solve s;
   int dropped = 0;
+  bool all_gated = false;
   for (;;) {
     std::vector<Eigen::Matrix2d> w;
     for (const Correspondence& c : pairs) w.push_back(FeatureInformation(c.sensed, o));
@@ -166,7 +167,8 @@ MinimizationResult MinimizeFeatureError(const std::vector<Correspondence>& input
         worst = i;
       }
     }
-    if (worst_ratio <= 1.0 || static_cast<int>(pairs.size()) <= o.min_kept) break;
+    all_gated = worst_ratio <= 1.0;
+    if (all_gated || static_cast<int>(pairs.size()) <= o.min_kept) break;
     pairs.erase(pairs.begin() + static_cast<std::ptrdiff_t>(worst));
     ++dropped;
   }
@@ -174,7 +176,6 @@ MinimizationResult MinimizeFeatureError(const std::vector<Correspondence>& input
   result.used = static_cast<int>(pairs.size());
   double sum = 0.0;
   int count = 0;
-  bool all_gated = true;
   for (const Correspondence& c : pairs) {
     const FeatureResidual r = ComputeResidual(c.sensed, c.model, s.pose);
     if (c.model.type == FeatureType::kCorner) {
@@ -184,7 +185,6 @@ MinimizationResult MinimizeFeatureError(const std::vector<Correspondence>& input
       sum += r.f.x() * r.f.x();
       count += 1;
     }
-    all_gated = all_gated && GateRatio(c, s.pose, o) <= 1.0;
   }
   result.rms_distance = count > 0 ? std::sqrt(sum / count) : 0.0;
 

@@ -12,6 +12,12 @@ void IncrementalLineFitter::Add(const Eigen::Vector2d& p) {
   sxx_ += q.x() * q.x();
   sxy_ += q.x() * q.y();
   syy_ += q.y() * q.y();
+  if (ray_variance_ > 0.0 && p.norm() > 0.0) {
+    const Eigen::Vector2d d = p.normalized();
+    dxx_ += d.x() * d.x();
+    dxy_ += d.x() * d.y();
+    dyy_ += d.y() * d.y();
+  }
 }
 
 void IncrementalLineFitter::Remove(const Eigen::Vector2d& p) {
@@ -22,12 +28,19 @@ void IncrementalLineFitter::Remove(const Eigen::Vector2d& p) {
   sxx_ -= q.x() * q.x();
   sxy_ -= q.x() * q.y();
   syy_ -= q.y() * q.y();
+  if (ray_variance_ > 0.0 && p.norm() > 0.0) {
+    const Eigen::Vector2d d = p.normalized();
+    dxx_ -= d.x() * d.x();
+    dxy_ -= d.x() * d.y();
+    dyy_ -= d.y() * d.y();
+  }
   if (n_ <= 0) Clear();
 }
 
 void IncrementalLineFitter::Clear() {
   n_ = 0;
   sx_ = sy_ = sxx_ = sxy_ = syy_ = 0.0;
+  dxx_ = dxy_ = dyy_ = 0.0;
 }
 
 LineFit IncrementalLineFitter::Fit() const {
@@ -43,7 +56,9 @@ LineFit IncrementalLineFitter::Fit() const {
   const double root = std::sqrt(0.25 * (cxx - cyy) * (cxx - cyy) + cxy * cxy);
   const double lambda_max = half_trace + root;
   if (lambda_max <= 1e-18) return f;  // all points coincide
-  const double angle = 0.5 * std::atan2(2.0 * cxy, cxx - cyy);  // principal axis
+  // Direction from the scatter without the expected ray-noise scatter.
+  const double k = ray_variance_ / n;
+  const double angle = 0.5 * std::atan2(2.0 * (cxy - k * dxy_), (cxx - k * dxx_) - (cyy - k * dyy_));
   f.valid = true;
   f.centroid = origin_ + Eigen::Vector2d(mx, my);
   f.direction = {std::cos(angle), std::sin(angle)};

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <random>
 
+#include "common/angle.h"
+
 namespace minenav {
 namespace {
 
@@ -50,6 +52,32 @@ TEST(IncrementalLineFitter, ExactLineHasZeroResidualAndFewPointsAreInvalid) {
   f.Remove({3, 5});
   EXPECT_EQ(f.count(), 0);
   EXPECT_FALSE(f.Fit().valid);
+}
+
+// A wall x = 3 seen from the origin at 18..53 deg incidence with range noise along the
+// rays: plain total least squares turns it toward the rays by ~0.34 deg on average; with
+// the ray noise taken out the mean error is below 0.05 deg.
+TEST(IncrementalLineFitter, RayNoiseCorrectionRemovesTheObliqueWallBias) {
+  std::mt19937 rng(1);
+  std::normal_distribution<double> noise(0.0, 0.1);
+  double plain = 0.0, corrected = 0.0;
+  const int trials = 400;
+  for (int t = 0; t < trials; ++t) {
+    IncrementalLineFitter a(Eigen::Vector2d(3, 0)), b(Eigen::Vector2d(3, 0), 0.1);
+    for (int i = 0; i < 150; ++i) {
+      const Eigen::Vector2d p(3.0, 1.0 + 3.0 * i / 150.0);
+      const Eigen::Vector2d q = p.normalized() * (p.norm() + noise(rng));
+      a.Add(q);
+      b.Add(q);
+    }
+    auto error = [](const LineFit& f) { return std::atan2(f.direction.x(), std::abs(f.direction.y())) * (f.direction.y() < 0 ? -1 : 1); };
+    plain += error(a.Fit());
+    corrected += error(b.Fit());
+  }
+  plain /= trials;
+  corrected /= trials;
+  EXPECT_GT(std::abs(plain), 0.004);       // ~0.34 deg
+  EXPECT_LT(std::abs(corrected), 0.0009);  // < 0.05 deg
 }
 
 }  // namespace
