@@ -170,6 +170,7 @@ int RunRenderCommand(const std::vector<std::string>& raw_args) {
   schema.AddBool("scans_at_odometry", &options.scans_at_odometry, "also draw scans at odometry poses");
   schema.AddInt("max_points_per_scan", &options.max_points_per_scan,
                 "readings drawn per scan, evenly strided (0 = all)", 0);
+  schema.AddInt("max_scans", &options.max_scans, "scans drawn, evenly spaced over the log (0 = all)", 0);
   schema.AddInt64("max_pose_gap_us", &options.max_pose_gap_us,
                   "interpolate a scan's pose between poses at most this far apart [us]", 0);
   schema.AddString("title", &options.title, "title (default: the log path)");

@@ -38,6 +38,7 @@ TEST(MessageCatalog, ChannelsMapToTheirTypes) {
   EXPECT_EQ(ExpectedTypeForChannel("PATH_REQUEST"), "minenav.path_request_t");
   EXPECT_EQ(ExpectedTypeForChannel("PATH"), "minenav.path_t");
   EXPECT_EQ(ExpectedTypeForChannel("PATHOLOGY"), "");
+  EXPECT_EQ(ExpectedTypeForChannel("SIM_WORLD"), "minenav.line_map_t");
   EXPECT_EQ(ExpectedTypeForChannel("SOMETHING_ELSE"), "");
   EXPECT_EQ(KnownMessageTypes().size(), 16u);
 }
@@ -337,6 +338,10 @@ TEST(LogRender, StridesScansAndDrawsContourMaps) {
   EXPECT_EQ(r.scene.lines[0].polylines.size(), 2u);
   EXPECT_TRUE(r.scene.lines[0].polylines[0].closed);
   EXPECT_EQ(r.scene.points[0].points.size(), 2u * 90u);
+
+  options.max_scans = 1;  // the first scan only
+  EXPECT_EQ(BuildLogScene(path, options).scene.points[0].points.size(), 90u);
+  options.max_scans = 200;
 
   options.scans_at = "POSE_NOPE";
   EXPECT_THROW(BuildLogScene(path, options), InputError);

@@ -113,7 +113,16 @@ LogRenderResult BuildLogScene(const std::string& log_path, const LogRenderOption
 
   const auto scans_it = run.scans.find(options.scan_channel);
   const std::vector<LadarScan> no_scans;
-  const std::vector<LadarScan>& scans = scans_it == run.scans.end() ? no_scans : scans_it->second;
+  const std::vector<LadarScan>& all_scans = scans_it == run.scans.end() ? no_scans : scans_it->second;
+  // A long live log has thousands of scans: draw an evenly spaced subset, first and last
+  // included, so the file stays small enough to open.
+  std::vector<LadarScan> scans;
+  if (options.max_scans > 0 && all_scans.size() > static_cast<size_t>(options.max_scans)) {
+    const size_t n = all_scans.size(), m = static_cast<size_t>(options.max_scans);
+    for (size_t j = 0; j < m; ++j) scans.push_back(all_scans[m == 1 ? 0 : j * (n - 1) / (m - 1)]);
+  } else {
+    scans = all_scans;
+  }
   if (scan_track) {
     SvgPointLayer layer;
     layer.label = "scan points at " + scan_track->channel + " poses";
@@ -187,7 +196,7 @@ LogRenderResult BuildLogScene(const std::string& log_path, const LogRenderOption
 
   scene.title = options.title.empty() ? log_path : options.title;
   std::ostringstream note;
-  note << scans.size() << " scans on " << options.scan_channel;
+  note << all_scans.size() << " scans on " << options.scan_channel;
   if (scan_track) note << ", " << result.scans_drawn << " drawn at " << scan_track->channel << " poses";
   if (result.scans_without_pose) note << ", " << result.scans_without_pose << " without a pose";
   if (options.max_points_per_scan > 0) note << " (at most " << options.max_points_per_scan << " points each)";

@@ -22,6 +22,7 @@ struct LogRenderOptions {
   std::string scans_at = "auto";
   bool scans_at_odometry = false;  // also draw scans at odometry poses (second colour)
   int max_points_per_scan = 1024;  // readings kept per scan (evenly strided); 0 = all
+  int max_scans = 200;             // scans drawn, evenly spaced over the log; 0 = all
   int64_t max_pose_gap_us = 500000;  // us; interpolate a pose between two at most this far apart
   std::string title;               // default: the log's path
 };

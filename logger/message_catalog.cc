@@ -109,6 +109,7 @@ std::string ExpectedTypeForChannel(const std::string& channel) {
       {"LADAR_SCAN", "ladar_scan_t"},     {"ODOMETRY", "odometry_t"},
       {"SIM_TRUTH", "vehicle_truth_t"},   {"POSE", "pose_estimate_t"},
       {"CONTOUR_MAP", "contour_map_t"},   {"LINE_MAP", "line_map_t"},
+      {"SIM_WORLD", "line_map_t"},
       {"PATH_REQUEST", "path_request_t"}, {"PATH", "path_t"},
       {"TASK_PLAN", "task_plan_t"},       {"TASK_STATUS", "task_status_t"},
       {"DRIVE_COMMAND", "drive_command_t"}, {"CUTTER_COMMAND", "cutter_command_t"},
