@@ -153,7 +153,10 @@ ContourFittingResult FitContours(const std::vector<int>& ids, const std::vector<
     out.iterations = iter;
     // 1. Degenerate segments.
     for (const int id : ids)
-      if (map.Find(id)) out.vertices_removed += map.RemoveDegenerateSegments(id, o.min_segment_length);
+      if (map.Find(id)) {
+        out.vertices_removed += map.RemoveSpikes(id, o.max_turn);
+        out.vertices_removed += map.RemoveDegenerateSegments(id, o.min_segment_length);
+      }
     Problem prob = MakeProblem(ids, map, region);
     if (prob.ids.empty() || prob.box.lo.x() > prob.box.hi.x()) {
       out.converged = true;

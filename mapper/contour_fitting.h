@@ -3,7 +3,7 @@
 // minimise the integral error (integral_error.h, EQ 4 for the gradient) of every scan
 // against the contours. Each iteration:
 //   1. remove degenerate (very short) segments, which make the gradient unstable and let
-//      sensor noise into the contour;
+//      sensor noise into the contour, and spikes (vertices where the contour folds back);
 //   2. compute correspondence of every nearby scan against the whole map (nearest wins),
 //      keeping the pieces on the contours being fitted;
 //   3. compute the gradient over all vertex coordinates;
@@ -33,12 +33,15 @@ struct ContourFittingOptions {
   double correspondence_threshold = 0.2;
   // m; segments shorter than this are merged away before each iteration.
   double min_segment_length = 0.1;
+  // rad; vertices where the contour turns back by more than this are removed (beyond the
+  // thesis: spikes left by noisy rough fits).
+  double max_turn = 2.4;
   // Iteration limit (termination condition 5).
   int max_iterations = 30;
   // m; gradient small: max |∂F/∂vertex| / matched length below this.
   double gradient_tolerance = 1e-7;
   // m; line-search resolution (smallest vertex move searched).
-  double step_resolution = 1e-5;
+  double step_resolution = 1e-4;
   // m; largest vertex move in an iteration below this ends the fit.
   double min_vertex_change = 1e-4;
   // Precondition the gradient by the per-vertex curvature (see above).

@@ -1,6 +1,7 @@
 #include "mapper/contour_map.h"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 #include <string>
 
@@ -197,6 +198,30 @@ int ContourMap::RemoveDegenerateSegments(int id, double min_length) {
       (p.size() == 2 && (p[1] - p[0]).norm() < min_length)) {
     Remove(id);
     return removed;
+  }
+  Reindex(c);
+  return removed;
+}
+
+int ContourMap::RemoveSpikes(int id, double max_turn) {
+  Contour& c = Mutable(id);
+  std::vector<Eigen::Vector2d>& p = c.points;
+  const double min_cos = std::cos(max_turn);
+  int removed = 0;
+  bool changed = true;
+  while (changed && p.size() >= (c.closed ? 4u : 3u)) {
+    changed = false;
+    const int n = static_cast<int>(p.size());
+    for (int v = c.closed ? 0 : 1; v < (c.closed ? n : n - 1); ++v) {
+      const Eigen::Vector2d in = p[static_cast<size_t>(v)] - p[static_cast<size_t>((v + n - 1) % n)];
+      const Eigen::Vector2d out = p[static_cast<size_t>((v + 1) % n)] - p[static_cast<size_t>(v)];
+      const double norms = in.norm() * out.norm();
+      if (norms <= 0.0 || in.dot(out) / norms >= min_cos) continue;
+      p.erase(p.begin() + v);
+      ++removed;
+      changed = true;
+      break;
+    }
   }
   Reindex(c);
   return removed;

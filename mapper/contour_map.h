@@ -82,6 +82,11 @@ class ContourMap {
   // put). Returns the number of vertices removed. Contours left with too few vertices are
   // removed (their id then no longer exists).
   int RemoveDegenerateSegments(int id, double min_length);
+  // Removes vertices where the contour folds back on itself (the turn between the incoming
+  // and outgoing segments exceeds max_turn radians; walls never fold back, so such a vertex
+  // is an artefact of noise or a bad rough fit). Returns the number removed; contours left
+  // with too few vertices are removed.
+  int RemoveSpikes(int id, double max_turn);
   // Re-spaces the vertices at about nominal_length.
   void Resample(int id, double nominal_length);
 

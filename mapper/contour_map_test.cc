@@ -149,6 +149,17 @@ TEST(ContourMapTest, RemoveDegenerateSegmentsMergesShortOnes) {
   EXPECT_EQ(map.Find(tiny), nullptr);
 }
 
+TEST(ContourMapTest, RemoveSpikesKeepsCornersAndDropsFoldBacks) {
+  ContourMap map;
+  // A wall along y = 0 with a spike at x = 2 and a real 90 degree corner at x = 4.
+  const int a = map.Create({{0, 0}, {1, 0}, {1.9, 0}, {2.0, -0.6}, {2.1, 0}, {3, 0}, {4, 0}, {4, 1}});
+  EXPECT_EQ(map.RemoveSpikes(a, 2.4), 1);
+  const Contour& c = map.Get(a);
+  EXPECT_EQ(c.NumPoints(), 7);
+  for (const auto& p : c.points) EXPECT_GE(p.y(), 0.0);
+  EXPECT_EQ(c.points.back(), Eigen::Vector2d(4, 1));
+}
+
 TEST(ContourMapTest, IndexStaysCorrectUnderRandomEdits) {
   ContourMap map(1.5);
   std::mt19937 rng(7);

@@ -32,18 +32,18 @@ MapDeviation ContourDeviation(const ContourMap& map, const std::vector<Segment>&
     for (int k = 0; k < c.NumSegments(); ++k) {
       const Segment s = c.GetSegment(k);
       const int n = std::max(1, static_cast<int>(std::ceil(s.length() / step)));
-      for (int i = 0; i < n; ++i) {
-        const double d = nearest(s.a + (static_cast<double>(i) / n) * (s.b - s.a));
+      auto sample = [&](const Eigen::Vector2d& p) {
+        const double d = nearest(p);
         sum += d;
-        out.max = std::max(out.max, d);
+        if (d > out.max) {
+          out.max = d;
+          out.worst_point = p;
+          out.worst_contour = id;
+        }
         ++out.samples;
-      }
-      if (!c.closed && k == c.NumSegments() - 1) {
-        const double d = nearest(s.b);
-        sum += d;
-        out.max = std::max(out.max, d);
-        ++out.samples;
-      }
+      };
+      for (int i = 0; i < n; ++i) sample(s.a + (static_cast<double>(i) / n) * (s.b - s.a));
+      if (!c.closed && k == c.NumSegments() - 1) sample(s.b);
     }
   out.mean = out.samples > 0 ? sum / out.samples : 0.0;
   return out;

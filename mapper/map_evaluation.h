@@ -14,6 +14,8 @@ struct MapDeviation {
   double mean = 0.0;  // m, mean distance of contour samples to the nearest true wall
   double max = 0.0;   // m
   int samples = 0;
+  Eigen::Vector2d worst_point = Eigen::Vector2d::Zero();  // where the max occurs
+  int worst_contour = -1;
 };
 // Samples every contour every `step` metres (and at every vertex).
 MapDeviation ContourDeviation(const ContourMap& map, const std::vector<Segment>& truth, double step = 0.05);

@@ -32,6 +32,7 @@ namespace {
 struct PosePiece {
   Eigen::Vector2d q_i, q_j;  // vehicle frame
   Eigen::Vector2d s, e;      // contour segment, world frame
+  Eigen::Vector2d u, n;      // its unit direction and left normal (fixed while the map is)
 };
 
 std::vector<PosePiece> CollectPieces(const PreprocessedScan& scan, const ScanCorrespondence& corr,
@@ -42,14 +43,26 @@ std::vector<PosePiece> CollectPieces(const PreprocessedScan& scan, const ScanCor
     const auto& pts = scan.partial_scans[static_cast<size_t>(p.partial)].points;
     const Contour& c = map.Get(p.segment.contour);
     const Segment seg = c.GetSegment(p.segment.segment);
-    out.push_back({pts[static_cast<size_t>(p.i)], pts[static_cast<size_t>(p.j)], seg.a, seg.b});
+    const Eigen::Vector2d d = seg.b - seg.a;
+    const double h = d.norm();
+    if (h <= 0.0) continue;
+    const Eigen::Vector2d u = d / h;
+    out.push_back({pts[static_cast<size_t>(p.i)], pts[static_cast<size_t>(p.j)], seg.a, seg.b, u, {-u.y(), u.x()}});
   }
   return out;
 }
 
+// Σ PieceError with the rotation computed once and the segment frames precomputed (the
+// line searches call this thousands of times per scan).
 double Error(const std::vector<PosePiece>& pieces, const Pose2& pose) {
+  const Eigen::Matrix2d r = pose.rotation();
+  const Eigen::Vector2d t = pose.translation();
   double f = 0.0;
-  for (const PosePiece& p : pieces) f += PieceError(pose * p.q_i, pose * p.q_j, p.s, p.e);
+  for (const PosePiece& p : pieces) {
+    const Eigen::Vector2d pi = r * p.q_i + t, pj = r * p.q_j + t;
+    const double di = p.n.dot(pi - p.s), dj = p.n.dot(pj - p.s);
+    f += std::abs(p.u.dot(pj - pi)) * (di * di + di * dj + dj * dj) / 3.0;
+  }
   return f;
 }
 

@@ -32,7 +32,7 @@ struct PoseEstimationOptions {
   // length (i.e. a mean offset of this size) ends the search.
   double gradient_tolerance = 1e-6;
   // m; line-search resolution; a step below it counts as "λ small".
-  double step_resolution = 1e-5;
+  double step_resolution = 1e-4;
   // m and rad; change in pose below both ends the search.
   double min_translation_change = 2e-5;
   double min_rotation_change = 2e-6;
