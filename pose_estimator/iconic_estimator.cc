@@ -177,6 +177,7 @@ std::vector<IconicMatchResult> EstimateSequence(const std::vector<LadarScan>& sc
   multi.cell_size = options.scan_map_cell_size;
   multi.max_pair_distance = options.max_pair_distance;
   multi.point_stride = options.point_stride;
+  multi.every_overlapping_scan = options.every_overlapping_scan;
   const MultiScanResult out = MatchScansSimultaneously(inputs, multi);
   for (size_t k = 0; k < scans.size(); ++k) {
     const int i = input_of[k];

@@ -51,6 +51,7 @@ struct IconicEstimatorOptions {
   // from its converged estimates; when false it starts from the given poses. Default true.
   bool seed_simultaneous = true;
   double max_pair_distance = 60.0;  // m
+  bool every_overlapping_scan = true;  // see MultiScanOptions
   int point_stride = 1;
 };
 

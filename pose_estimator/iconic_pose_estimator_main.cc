@@ -88,6 +88,8 @@ void Declare(ConfigSchema& s, ProcessOptions& p, IconicEstimatorOptions& e) {
   s.AddDouble("fit_segment_length", &e.fit.segment_length, "m", "segment length of polylines fit to a scan (scan-map)", 0.05, 100.0);
   s.AddDouble("max_pair_distance", &e.max_pair_distance, "m", "simultaneous: scans farther apart are not paired", 0.0, 1e6);
   s.AddInt("point_stride", &e.point_stride, "simultaneous: use every k-th point", 1, 1000);
+  s.AddBool("every_overlapping_scan", &e.every_overlapping_scan,
+            "simultaneous: a residual per overlapping scan (A.3) rather than for the nearest only");
   s.AddChannel("scan_channel", &p.scan_channel, "subscribes", "ladar_scan_t", "scans");
   s.AddChannel("odometry_channel", &p.odometry_channel, "subscribes", "odometry_t", "initial estimates");
   s.AddChannel("map_channel", &p.map_channel, "subscribes", "line_map_t", "surveyed map when --map is empty");

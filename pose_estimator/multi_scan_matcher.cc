@@ -66,44 +66,54 @@ Linearisation Linearise(const std::vector<ScanModel>& models, const std::vector<
     for (size_t i = 0; i < models[m].points.size(); i += static_cast<size_t>(options.point_stride)) {
       const Eigen::Vector2d& p = models[m].points[i];
       const Eigen::Vector2d P = Rm * p + tm;
+      // One residual for a point and a segment of scan n (A.3).
+      bool counted = false;
+      auto add = [&](int n, const SegmentMatch& match) {
+        const ScanModel& model_n = models[static_cast<size_t>(n)];
+        if (options.match.reject_open_ends && IsOpenEnd(model_n.table->open_ends(), match.segment, match.region))
+          return;
+        const IconicResidual r =
+            ComputeIconicResidual(poses[m], p, poses[static_cast<size_t>(n)],
+                                  model_n.table->segments()[static_cast<size_t>(match.segment)], match.region);
+        const double w = RobustWeight(options.match.loss, r.f, options.match.loss_scale);
+        const int vn = model_n.variable;
+        if (vm >= 0) {
+          Hmm.noalias() += w * r.d_pose_m.transpose() * r.d_pose_m;
+          lin.g.segment<3>(3 * vm).noalias() += w * r.f * r.d_pose_m.transpose();
+        }
+        if (vn >= 0) {
+          auto [it, inserted] = cross.try_emplace(n, Eigen::Matrix3d::Zero(), Eigen::Matrix3d::Zero());
+          if (vm >= 0) it->second.first.noalias() += w * r.d_pose_m.transpose() * r.d_pose_n;
+          it->second.second.noalias() += w * r.d_pose_n.transpose() * r.d_pose_n;
+          lin.g.segment<3>(3 * vn).noalias() += w * r.f * r.d_pose_n.transpose();
+        }
+        lin.sum_sq += r.f * r.f;
+        lin.weighted_sq += w * r.f * r.f;
+        ++lin.count;
+        lin.distances.push_back(match.distance);
+        if (!counted) ++lin.matched_per_scan[m];
+        counted = true;
+      };
       SegmentMatch best;
       int best_n = -1;
       double best_d = threshold;
       for (int n : partners[m]) {
         if (models[static_cast<size_t>(n)].variable < 0 && vm < 0) continue;
         const Eigen::Vector2d pn = inverses[static_cast<size_t>(n)] * P;
-        if ((pn - models[static_cast<size_t>(n)].centre).norm() > models[static_cast<size_t>(n)].radius + best_d)
+        const double limit = options.every_overlapping_scan ? threshold : best_d;
+        if ((pn - models[static_cast<size_t>(n)].centre).norm() > models[static_cast<size_t>(n)].radius + limit)
           continue;
-        const SegmentMatch local = models[static_cast<size_t>(n)].table->Nearest(pn, best_d);
-        if (local.matched() && (best_n < 0 || local.distance < best.distance)) {
+        const SegmentMatch local = models[static_cast<size_t>(n)].table->Nearest(pn, limit);
+        if (!local.matched()) continue;
+        if (options.every_overlapping_scan) {
+          add(n, local);
+        } else if (best_n < 0 || local.distance < best.distance) {
           best = local;
           best_n = n;
           best_d = local.distance;
         }
       }
-      if (best_n < 0) continue;
-      const ScanModel& model_n = models[static_cast<size_t>(best_n)];
-      if (options.match.reject_open_ends && IsOpenEnd(model_n.table->open_ends(), best.segment, best.region)) continue;
-      const IconicResidual r =
-          ComputeIconicResidual(poses[m], p, poses[static_cast<size_t>(best_n)],
-                                model_n.table->segments()[static_cast<size_t>(best.segment)], best.region);
-      const double w = RobustWeight(options.match.loss, r.f, options.match.loss_scale);
-      const int vn = model_n.variable;
-      if (vm >= 0) {
-        Hmm.noalias() += w * r.d_pose_m.transpose() * r.d_pose_m;
-        lin.g.segment<3>(3 * vm).noalias() += w * r.f * r.d_pose_m.transpose();
-      }
-      if (vn >= 0) {
-        auto [it, inserted] = cross.try_emplace(best_n, Eigen::Matrix3d::Zero(), Eigen::Matrix3d::Zero());
-        if (vm >= 0) it->second.first.noalias() += w * r.d_pose_m.transpose() * r.d_pose_n;
-        it->second.second.noalias() += w * r.d_pose_n.transpose() * r.d_pose_n;
-        lin.g.segment<3>(3 * vn).noalias() += w * r.f * r.d_pose_n.transpose();
-      }
-      lin.sum_sq += r.f * r.f;
-      lin.weighted_sq += w * r.f * r.f;
-      ++lin.count;
-      ++lin.matched_per_scan[m];
-      lin.distances.push_back(best.distance);
+      if (best_n >= 0) add(best_n, best);
     }
     if (vm >= 0) add_block(vm, vm, Hmm);
     for (const auto& [n, hh] : cross) {
