@@ -236,7 +236,10 @@ int RunReplay(NodeRuntime& runtime, const LadarDriverOptions& o) {
   NodeRuntime::InstallSignalHandlers();
   std::optional<int64_t> log_t0, clock_t0;
   int64_t published = 0, bad = 0;
-  while (!runtime.StopRequested()) {
+  const int64_t start = runtime.NowUtime();
+  const int64_t run_for_us = std::llround(runtime.options().run_for * 1e6);
+  auto out_of_time = [&] { return run_for_us > 0 && runtime.NowUtime() - start >= run_for_us; };
+  while (!runtime.StopRequested() && !out_of_time()) {
     const LogEvent* e = reader.NextInPlace();
     if (e == nullptr) break;
     if (e->channel != o.scan_channel) continue;
@@ -254,8 +257,9 @@ int RunReplay(NodeRuntime& runtime, const LadarDriverOptions& o) {
     const int64_t due =
         *clock_t0 + std::llround(static_cast<double>(e->timestamp - *log_t0) / o.replay_speed);
     // Wait for the recorded time, still serving heartbeats and signals.
-    while (!runtime.StopRequested() && runtime.NowUtime() < due) runtime.SpinOnce(due - runtime.NowUtime());
-    if (runtime.StopRequested()) break;
+    while (!runtime.StopRequested() && !out_of_time() && runtime.NowUtime() < due)
+      runtime.SpinOnce(due - runtime.NowUtime());
+    if (runtime.StopRequested() || out_of_time()) break;
     bus.Publish(o.scan_channel, e->data.data(), static_cast<int>(e->data.size()));
     bus.CountHandled();
     ++published;

@@ -48,6 +48,9 @@ using testing::ReadChannel;
 using testing::ReadPayloads;
 using testing::ReadTextFile;
 
+// Processes stop by themselves after this long even if the test dies without killing them.
+constexpr const char* kSafetyStop = "--run-for";
+
 struct TempDir {
   fs::path path = fs::temp_directory_path() / ("minenav_fleet_test_" + std::to_string(::getpid()));
   TempDir() { fs::create_directories(path); }
@@ -159,8 +162,8 @@ TEST_F(BusTest, ScriptedDriveIsRecordedCompletelyAndReplaysIdentically) {
 
   ChildProcess logger({"lcm-logger", "--lcm-url=" + url_, "-f", "-q", log}, dir / "logger.txt");
   std::this_thread::sleep_for(std::chrono::milliseconds(500));  // logger subscribed first
-  ChildProcess ladar({MINENAV_LADAR_DRIVER_BIN, "--sensor", "typhoon", "--seed", "5"}, dir / "ladar.txt");
-  ChildProcess sim({MINENAV_VEHICLE_SIM_BIN, "--generate", "mine", "--seed", "3", "--max-forward-speed", "0.5",
+  ChildProcess ladar({MINENAV_LADAR_DRIVER_BIN, kSafetyStop, "90", "--sensor", "typhoon", "--seed", "5"}, dir / "ladar.txt");
+  ChildProcess sim({MINENAV_VEHICLE_SIM_BIN, kSafetyStop, "90", "--generate", "mine", "--seed", "3", "--max-forward-speed", "0.5",
                     "--max-acceleration", "0", "--max-deceleration", "0", "--max-yaw-acceleration", "0",
                     "--max-turn-in-place-rate", "0.5"},
                    dir / "sim.txt");
@@ -320,14 +323,14 @@ TEST_F(BusTest, ScriptedDriveIsRecordedCompletelyAndReplaysIdentically) {
 
 TEST_F(BusTest, BadMessagesAreLoggedCountedAndSurvived) {
   TempDir dir;
-  ChildProcess sim({MINENAV_VEHICLE_SIM_BIN, "--generate", "mine", "--heartbeat-period", "0.2",
+  ChildProcess sim({MINENAV_VEHICLE_SIM_BIN, kSafetyStop, "90", "--generate", "mine", "--heartbeat-period", "0.2",
                     "--max-forward-speed", "0.5", "--max-acceleration", "0"},
                    dir / "sim.txt");
   {
     std::ofstream world(dir / "room.json");
     world << "{\"segments\": [[-10,-10,10,-10],[10,-10,10,10],[10,10,-10,10],[-10,10,-10,-10]]}";
   }
-  ChildProcess ladar({MINENAV_LADAR_DRIVER_BIN, "--world", dir / "room.json", "--heartbeat-period", "0.2",
+  ChildProcess ladar({MINENAV_LADAR_DRIVER_BIN, kSafetyStop, "90", "--world", dir / "room.json", "--heartbeat-period", "0.2",
                       "--truth-channel", "FAKE_TRUTH"},
                      dir / "ladar.txt");
   LcmBus bus(url_, 1000);
@@ -431,7 +434,7 @@ TEST_F(BusTest, ReplayRepublishesRecordedScansAtTheRecordedRate) {
   bus.Subscribe("ODOMETRY", [&](const RawMessage&) { ++odometry; });
   std::map<std::string, heartbeat_t> hb;
   Subscribe<heartbeat_t>(bus, "HEARTBEAT", [&](const heartbeat_t& m) { hb[m.process] = m; });
-  ChildProcess driver({MINENAV_LADAR_DRIVER_BIN, "--replay", log, "--replay-speed", "1"}, dir / "driver.txt");
+  ChildProcess driver({MINENAV_LADAR_DRIVER_BIN, kSafetyStop, "90", "--replay", log, "--replay-speed", "1"}, dir / "driver.txt");
   Pump(bus, 20.0, [&] { return !driver.Running(); });
   Pump(bus, 0.3);
   EXPECT_EQ(driver.Wait(1.0), 0) << ReadTextFile(dir / "driver.txt");
