@@ -226,6 +226,7 @@ int RunSimulation(NodeRuntime& runtime, const LadarDriverOptions& o, const Ladar
       runtime.SetStatus(heartbeat_t::OK, "");
     }
   });
+  runtime.SetStatus(heartbeat_t::WARN, "waiting for " + o.truth_channel);
   runtime.OnShutdown([&] { MINENAV_LOG(kInfo) << scan_id << " scans published"; });
   return runtime.Run();
 }
