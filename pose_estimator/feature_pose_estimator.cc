@@ -1,6 +1,7 @@
 #include "pose_estimator/feature_pose_estimator.h"
 
 #include <chrono>
+#include <algorithm>
 #include <cmath>
 
 namespace minenav {
@@ -24,21 +25,36 @@ Eigen::Matrix3d VehicleCovariance(const Eigen::Matrix3d& sensor_cov, const Pose2
 
 }  // namespace
 
-double PointSupport(const LadarScan& scan, const Pose2& map_T_sensor,
-                    const std::vector<Segment>& segments, double distance) {
+PointSupport MeasureSupport(const LadarScan& scan, const Pose2& map_T_sensor,
+                            const std::vector<Segment>& segments, double distance) {
+  PointSupport out;
   const std::vector<ScanPoint> pts = ScanPointsInSensorFrame(scan);
-  if (pts.empty()) return 0.0;
-  int near = 0;
-  for (const ScanPoint& p : pts) {
+  if (pts.empty()) return out;
+  std::vector<double> near;
+  // At most ~512 points: a fraction and a median need no more.
+  const size_t stride = std::max<size_t>(1, pts.size() / 512);
+  size_t used = 0;
+  for (size_t k = 0; k < pts.size(); k += stride) {
+    const ScanPoint& p = pts[k];
+    ++used;
     const Eigen::Vector2d w = map_T_sensor * p.point;
+    double best = distance;
+    bool found = false;
     for (const Segment& s : segments) {
-      if (PointToSegmentDistance(w, s) <= distance) {
-        ++near;
-        break;
+      const double d = PointToSegmentDistance(w, s);
+      if (d <= best) {
+        best = d;
+        found = true;
       }
     }
+    if (found) near.push_back(best);
   }
-  return static_cast<double>(near) / static_cast<double>(pts.size());
+  out.fraction = static_cast<double>(near.size()) / static_cast<double>(used);
+  if (!near.empty()) {
+    std::nth_element(near.begin(), near.begin() + static_cast<std::ptrdiff_t>(near.size() / 2), near.end());
+    out.median_distance = near[near.size() / 2];
+  }
+  return out;
 }
 
 std::string ValidateOptions(const FeaturePoseEstimatorOptions& o) {
@@ -80,7 +96,7 @@ FeaturePoseResult FeaturePoseEstimator::Estimate(const LadarScan& scan,
       PredictFeatures(map_, initial_sensor.translation(), prediction);
   result.timings.prediction = SecondsSince(t0);
   std::vector<Segment> predicted_segments;
-  for (int i : predicted.segments_in_range_ids) predicted_segments.push_back(map_.segments[static_cast<size_t>(i)]);
+  for (int i : predicted.visible_segments) predicted_segments.push_back(map_.segments[static_cast<size_t>(i)]);
 
   t0 = std::chrono::steady_clock::now();
   const ExtractedFeatures sensed = ExtractFeatures(scan, options_.extraction);
@@ -169,12 +185,23 @@ FeaturePoseResult FeaturePoseEstimator::Estimate(const LadarScan& scan,
                     " m, " + std::to_string(RadToDeg(turned)) + " deg)";
   }
   // Our check beyond the thesis: at the estimate, enough of the scan must lie on the map.
+  // The points on the map must lie as close to it as the range noise allows: a pose a
+  // decimetre off (features of rounded walls, a map a little wrong) shows up here.
   if (result.converged && options_.min_support > 0.0) {
-    result.support = PointSupport(scan, min.pose, predicted_segments, options_.support_distance);
+    t0 = std::chrono::steady_clock::now();
+    const PointSupport support = MeasureSupport(scan, min.pose, predicted_segments, options_.support_distance);
+    result.support = support.fraction;
+    result.support_median_distance = support.median_distance;
+    result.timings.verification = SecondsSince(t0);
+    const double max_median = options_.max_median_distance_factor * options_.minimization.point_sigma;
     if (result.support < options_.min_support) {
       result.converged = false;
       result.reason = "only " + std::to_string(static_cast<int>(100.0 * result.support)) +
                       "% of the scan lies on the map at the estimate";
+    } else if (options_.max_median_distance_factor > 0.0 && support.median_distance > max_median) {
+      result.converged = false;
+      result.reason = "scan points lie " + std::to_string(support.median_distance) +
+                      " m from the map at the estimate (median; noise allows " + std::to_string(max_median) + ")";
     }
   }
   return result;

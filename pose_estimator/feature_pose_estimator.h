@@ -38,6 +38,9 @@ struct FeaturePoseEstimatorOptions {
   // lowers it more). 0 switches it off.
   double min_support = 0.4;       // 1
   double support_distance = 0.3;  // m
+  // The median distance of those points from the map must not exceed this many
+  // minimization.point_sigma (a right pose gives ~0.7 sigma). 0 switches it off.
+  double max_median_distance_factor = 2.0;  // 1
 };
 
 struct FeaturePoseTimings {  // s, wall time of each stage
@@ -45,7 +48,8 @@ struct FeaturePoseTimings {  // s, wall time of each stage
   double extraction = 0.0;
   double matching = 0.0;
   double minimization = 0.0;
-  double total() const { return prediction + extraction + matching + minimization; }
+  double verification = 0.0;  // the support check (ours)
+  double total() const { return prediction + extraction + matching + minimization + verification; }
 };
 
 struct FeaturePoseResult {
@@ -63,6 +67,7 @@ struct FeaturePoseResult {
   double residual = 0.0;    // m, RMS of the distance errors
   bool search_complete = true;
   double support = 0.0;     // fraction of scan points on the map at the estimate
+  double support_median_distance = 0.0;  // m, their median distance from the map
   FeaturePoseTimings timings;
 };
 
@@ -83,10 +88,15 @@ class FeaturePoseEstimator {
   int dropped_ = 0;
 };
 
-// Fraction of the scan's valid points within `distance` of one of `segments`, with the
-// sensor at map_T_sensor.
-double PointSupport(const LadarScan& scan, const Pose2& map_T_sensor,
-                    const std::vector<Segment>& segments, double distance);
+// The scan's valid points (every k-th, at most ~512) within `distance` of one of
+// `segments` (the estimator passes the segments predicted visible), with the sensor at
+// map_T_sensor: their fraction and their median distance.
+struct PointSupport {
+  double fraction = 0.0;
+  double median_distance = 0.0;  // m
+};
+PointSupport MeasureSupport(const LadarScan& scan, const Pose2& map_T_sensor,
+                            const std::vector<Segment>& segments, double distance);
 
 // One-line reason if the options are inconsistent, else empty.
 std::string ValidateOptions(const FeaturePoseEstimatorOptions& options);

@@ -139,6 +139,13 @@ PredictedFeatures PredictFeatures(const FeatureMap& map, const Eigen::Vector2d& 
     runs.erase(runs.begin());
   }
 
+  for (const Run& r : runs) {
+    if (r.segment >= 0) out.visible_segments.push_back(r.segment);
+  }
+  std::sort(out.visible_segments.begin(), out.visible_segments.end());
+  out.visible_segments.erase(std::unique(out.visible_segments.begin(), out.visible_segments.end()),
+                             out.visible_segments.end());
+
   // 3. Piece ends of the visible runs, and whether they are segment endpoints.
   for (Run& r : runs) {
     if (r.segment < 0) continue;

@@ -39,6 +39,7 @@ struct PredictedFeatures {
   std::vector<VertexLabel> vertex_labels;  // one per map vertex
   int segments_in_range = 0;
   std::vector<int> segments_in_range_ids;  // indices of the map segments within max_range
+  std::vector<int> visible_segments;       // indices of the segments seen over some angle
 };
 
 PredictedFeatures PredictFeatures(const FeatureMap& map, const Eigen::Vector2d& position,
