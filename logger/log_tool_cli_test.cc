@@ -173,6 +173,18 @@ TEST(LogToolCli, DriftAndSeveralWorlds) {
   EXPECT_NEAR(run.tracks.at("ODOMETRY").poses[0].pose.x, 3.0, 1e-12);
 }
 
+TEST(LogToolCli, SurveyReadsAConfigFile) {
+  const Inputs in = Generate();
+  const std::string config = TempPath("survey.conf"), log = TempPath("c.lcm");
+  std::ofstream(config) << "# a survey\nworld = " << in.world << "\nstations = " << in.stations
+                        << "\nsensor = cyclone\npoints = 128\npose_noise = 0.1,0.1,1deg\n";
+  const RunResult r = LogTool("survey --config " + config + " --points 64 --out " + log);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const RunLog run = ReadRunLog(log);
+  EXPECT_EQ(run.scans.at("LADAR_SCAN")[0].sensor_id, "cyclone");
+  EXPECT_EQ(run.scans.at("LADAR_SCAN")[0].ranges.size(), 64u);  // the flag overrides the file
+}
+
 TEST(LogToolCli, GenerateWritesEveryKind) {
   for (const std::string kind : {"mine", "research", "mockup", "loop"}) {
     const Inputs in = Generate(kind, "");

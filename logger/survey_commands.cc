@@ -26,7 +26,7 @@ struct SurveyFlags {
   std::string pose_noise, drift;
   std::string scan_channel = "LADAR_SCAN", odometry_channel = "ODOMETRY", truth_channel = "SIM_TRUTH";
   bool quiet = false;
-  std::string world_help;  // --world is taken out before parsing; declared for --help
+  std::string world_help;  // --world flags are taken out before parsing; this gets a config file's `world =`
 };
 
 LadarModel SensorFor(const std::string& sensor, int points) {
@@ -122,7 +122,7 @@ bool HelpOrPrint(const std::vector<std::string>& args) {
 
 int RunSurveyCommand(const std::vector<std::string>& raw_args) {
   std::vector<std::string> args = ExpandBareBoolFlags(raw_args, {"quiet"});
-  const std::vector<std::string> world_paths = TakeRepeatedFlag(&args, "world");
+  std::vector<std::string> world_paths = TakeRepeatedFlag(&args, "world");
   const std::string summary =
       "Simulates a ladar survey offline (thesis 5.2.1): one scan at each station of a stations CSV,\n"
       "in a world of line segments, written to an LCM log with LADAR_SCAN, ODOMETRY (initial pose\n"
@@ -153,6 +153,9 @@ int RunSurveyCommand(const std::vector<std::string>& raw_args) {
   if (schema.Parse(args) == ParseOutcome::kExit) return 0;
   options.seed = static_cast<uint64_t>(flags.seed);
   ParseInitialEstimates(flags, &options);
+  // Flags --world were taken out before parsing; a `world = FILE` line of a --config
+  // file lands here and comes first.
+  if (!flags.world_help.empty()) world_paths.insert(world_paths.begin(), flags.world_help);
   if (world_paths.empty()) throw UsageError("--world is required (see --help)");
   if (flags.stations_path.empty()) throw UsageError("--stations is required (see --help)");
   RequireOutputPath(flags.out, "--out");
