@@ -26,7 +26,7 @@ struct SurveyFlags {
   std::string pose_noise, drift;
   std::string scan_channel = "LADAR_SCAN", odometry_channel = "ODOMETRY", truth_channel = "SIM_TRUTH";
   bool quiet = false;
-  std::string world_help;  // --world flags are taken out before parsing; this gets a config file's `world =`
+  std::string config_world;  // --world flags are taken out before parsing; this gets a config file's `world =`
 };
 
 LadarModel SensorFor(const std::string& sensor, int points) {
@@ -42,7 +42,7 @@ LadarModel SensorFor(const std::string& sensor, int points) {
 // Declares every survey option. The sensor-model options take the chosen sensor's values
 // as defaults, so --help --sensor cyclone shows Cyclone's.
 void DeclareSurveyOptions(ConfigSchema* s, SurveyFlags* f, SurveyOptions* o) {
-  s->AddString("world", &f->world_help,
+  s->AddString("world", &f->config_world,
                "world segments JSON (required; repeat for several worlds, chosen per station by the stations CSV column 'world')");
   s->AddString("stations", &f->stations_path, "stations CSV x,y,theta[,world] (required)");
   s->AddString("out", &f->out, "LCM log to write (required)");
@@ -155,7 +155,7 @@ int RunSurveyCommand(const std::vector<std::string>& raw_args) {
   ParseInitialEstimates(flags, &options);
   // Flags --world were taken out before parsing; a `world = FILE` line of a --config
   // file lands here and comes first.
-  if (!flags.world_help.empty()) world_paths.insert(world_paths.begin(), flags.world_help);
+  if (!flags.config_world.empty()) world_paths.insert(world_paths.begin(), flags.config_world);
   if (world_paths.empty()) throw UsageError("--world is required (see --help)");
   if (flags.stations_path.empty()) throw UsageError("--stations is required (see --help)");
   RequireOutputPath(flags.out, "--out");
