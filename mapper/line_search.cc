@@ -47,4 +47,26 @@ LineSearchResult LineSearch(const std::function<double(double)>& error, double e
   return best;
 }
 
+LineSearchResult QuadraticLineSearch(const std::function<double(double)>& error, double error_at_zero,
+                                     double slope_at_zero, double lambda_max, double resolution) {
+  LineSearchResult best{0.0, error_at_zero, 0};
+  if (!(lambda_max > 0.0) || !(slope_at_zero < 0.0)) return best;
+  const double f_max = error(lambda_max);
+  best.evaluations = 1;
+  if (f_max < best.value) best = {lambda_max, f_max, 1};
+  const double a = (f_max - error_at_zero - slope_at_zero * lambda_max) / (lambda_max * lambda_max);
+  if (a > 0.0) {
+    const double l = std::min(lambda_max, -slope_at_zero / (2.0 * a));
+    if (l >= resolution && l < lambda_max) {
+      const double v = error(l);
+      ++best.evaluations;
+      if (v < best.value) best = {l, v, best.evaluations};
+    }
+  }
+  if (best.lambda > 0.0) return best;
+  LineSearchResult fallback = LineSearch(error, error_at_zero, lambda_max, resolution);
+  fallback.evaluations += best.evaluations;
+  return fallback;
+}
+
 }  // namespace minenav::mapper

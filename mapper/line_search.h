@@ -19,4 +19,11 @@ struct LineSearchResult {
 LineSearchResult LineSearch(const std::function<double(double)>& error, double error_at_zero,
                             double lambda_max, double resolution);
 
+// For an error that is exactly quadratic along the line (the integral error under a pure
+// translation of the scan, correspondence fixed): the minimum from the value and slope at 0
+// and the value at λ_max, clamped to (0, λ_max]. Two evaluations instead of tens; falls back
+// to LineSearch if the quadratic model does not lower the error (e.g. not convex).
+LineSearchResult QuadraticLineSearch(const std::function<double(double)>& error, double error_at_zero,
+                                     double slope_at_zero, double lambda_max, double resolution);
+
 }  // namespace minenav::mapper

@@ -134,9 +134,10 @@ PoseEstimationResult EstimatePose(const PreprocessedScan& scan, const Pose2& ini
     if (gxy.norm() > 0.0) {
       const Eigen::Vector2d dir = -gxy.normalized();
       const Pose2 base = out.pose;
-      const LineSearchResult ls = LineSearch(
+      // With correspondence fixed the error is exactly quadratic in the translation.
+      const LineSearchResult ls = QuadraticLineSearch(
           [&](double l) { return Error(pieces, Pose2(base.x + l * dir.x(), base.y + l * dir.y(), base.theta)); }, f0,
-          threshold, o.step_resolution);
+          -gxy.norm(), threshold, o.step_resolution);
       if (ls.lambda > 0.0) {
         out.pose = Pose2(base.x + ls.lambda * dir.x(), base.y + ls.lambda * dir.y(), base.theta);
         f0 = ls.value;

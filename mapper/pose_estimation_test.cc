@@ -21,6 +21,22 @@ TEST(LineSearchTest, FindsTheMinimumOfAParabola) {
   EXPECT_EQ(none.lambda, 0.0);
 }
 
+TEST(LineSearchTest, QuadraticSearchIsExactOnAParabola) {
+  auto f = [](double l) { return 2.0 * (l - 0.37) * (l - 0.37) + 1.0; };
+  const auto ls = QuadraticLineSearch(f, f(0), -4.0 * 0.37, 3.0, 1e-6);
+  EXPECT_NEAR(ls.lambda, 0.37, 1e-12);
+  EXPECT_EQ(ls.evaluations, 2);
+  // Minimum beyond the bound: clamped to λ_max.
+  EXPECT_NEAR(QuadraticLineSearch(f, f(0), -4.0 * 0.37, 0.2, 1e-6).lambda, 0.2, 1e-12);
+  // Not a parabola: still descends, to near the minimum at (pi - 0.1) / 3.
+  auto g = [](double l) { return std::cos(3.0 * l + 0.1); };
+  const auto fb = QuadraticLineSearch(g, g(0), -3.0 * std::sin(0.1), 2.09, 1e-6);
+  EXPECT_LT(fb.value, -0.95);
+  // Rising everywhere within the bound: the fallback finds no step.
+  auto h = [](double l) { return l * l * l - 0.001 * l; };
+  EXPECT_LT(QuadraticLineSearch(h, h(0), -0.001, 1.0, 1e-6).value, 0.0);
+}
+
 TEST(PoseEstimationTest, OptionsAreValidated) {
   PoseEstimationOptions o;
   EXPECT_EQ(ValidateOptions(o), "");
