@@ -102,6 +102,7 @@ TEST(IconicProcessTest, EveryModeWritesOnePosePerScan) {
     if (mode == "surveyed") args.insert(args.end(), {"--map", dir / "map.json"});
     const RunResult r = Ipe(args, dir);
     ASSERT_EQ(r.exit_code, 0) << mode << ": " << r.output;
+    SCOPED_TRACE(r.output);
     ExpectPosesNearTruth(dir / "est.csv", truth, 0.03, mode);
     const auto published = testing::ReadChannel<pose_estimate_t>(dir / "out.lcm", "POSE_IPE");
     ASSERT_EQ(published.size(), truth.size()) << mode;
