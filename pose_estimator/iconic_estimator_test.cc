@@ -16,7 +16,7 @@ TEST(IconicEstimatorTest, EveryModeTracksASequence) {
   std::vector<LadarScan> scans;
   std::vector<Pose2> initials;
   for (size_t k = 0; k < truths.size(); ++k) {
-    scans.push_back(ExactScan(RoomWorld(), truths[k], 1440, 0.01, static_cast<uint32_t>(k + 1),
+    scans.push_back(ExactScan(RoomWorld(), truths[k], 720, 0.01, static_cast<uint32_t>(k + 1),
                               static_cast<int64_t>(k) * 1000000));
     // The first pose is known (it defines the map frame); the others carry odometry error.
     const double e = k == 0 ? 0.0 : 0.25;

@@ -29,7 +29,7 @@ TEST(MultiScanMatcherTest, AllPosesMoveTogetherToTruth) {
   std::vector<MultiScanInput> inputs;
   for (size_t k = 0; k < Truths().size(); ++k) {
     MultiScanInput in;
-    in.points = Points(ExactScan(RoomWorld(), Truths()[k], 1440));
+    in.points = Points(ExactScan(RoomWorld(), Truths()[k], 720));
     in.initial = Pose2::FromVector(Truths()[k].vector() + errors[k]);
     in.fixed = k == 0;
     inputs.push_back(in);
