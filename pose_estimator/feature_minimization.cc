@@ -193,21 +193,6 @@ MinimizationResult MinimizeFeatureError(const std::vector<Correspondence>& input
   Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
   const double min_information = 1.0 / (o.max_std * o.max_std);
   std::string weak;
-  double worst_std = 0.0;
-  for (int k = 0; k < 3; ++k) {
-    const double l = eig.eigenvalues()(k);
-    const Eigen::Vector3d v = eig.eigenvectors().col(k);
-    worst_std = std::max(worst_std, l > 0.0 ? 1.0 / std::sqrt(l) : std::numeric_limits<double>::infinity());
-    if (l < min_information) {
-      cov += v * v.transpose() * o.unobservable_variance;
-      std::ostringstream os;
-      os.precision(2);
-      os << (weak.empty() ? "" : ", ") << "(" << v.x() << ", " << v.y() << ", " << v.z() << ")";
-      weak += os.str();
-    } else {
-      cov += v * v.transpose() / l;
-    }
-  }
   // When the features disagree more than their weights say (fractal mine walls, a map a
   // little off), scale the covariance by the a-posteriori variance factor so it stays
   // honest; never below the a-priori one.
@@ -218,7 +203,25 @@ MinimizationResult MinimizeFeatureError(const std::vector<Correspondence>& input
   }
   const int dof = 2 * static_cast<int>(pairs.size()) - 3;
   result.variance_factor = dof > 0 ? std::max(1.0, chi2 / dof) : 1.0;
-  if (weak.empty()) cov *= result.variance_factor;
+  double worst_std = 0.0;
+  std::string loose;
+  for (int k = 0; k < 3; ++k) {
+    const double l = eig.eigenvalues()(k);
+    const Eigen::Vector3d v = eig.eigenvectors().col(k);
+    std::ostringstream os;
+    os.precision(2);
+    os << "(" << v.x() << ", " << v.y() << ", " << v.z() << ")";
+    if (l < min_information) {
+      cov += v * v.transpose() * o.unobservable_variance;
+      weak += (weak.empty() ? "" : ", ") + os.str();
+      worst_std = std::numeric_limits<double>::infinity();
+    } else {
+      const double variance = result.variance_factor / l;
+      cov += v * v.transpose() * variance;
+      worst_std = std::max(worst_std, std::sqrt(variance));
+      if (std::sqrt(variance) > o.max_converged_std) loose += (loose.empty() ? "" : ", ") + os.str();
+    }
+  }
   result.covariance = cov;
   result.min_std_direction = worst_std;
   if (!weak.empty()) {
@@ -229,6 +232,9 @@ MinimizationResult MinimizeFeatureError(const std::vector<Correspondence>& input
   } else if (!all_gated) {
     result.reason = "correspondences disagree beyond the gates after dropping " +
                     std::to_string(dropped);
+  } else if (!loose.empty()) {
+    result.reason = "weakly constrained direction (x, y, theta) " + loose + ": std " +
+                    std::to_string(worst_std) + " > " + std::to_string(o.max_converged_std);
   } else {
     result.converged = true;
     result.reason = "converged with " + std::to_string(pairs.size()) + " correspondences";

@@ -43,6 +43,9 @@ struct MinimizationOptions {
   double max_std = 0.5;                 // m (rad x 1 m for heading): beyond this a
                                         // direction counts as unobservable
   double unobservable_variance = 1e6;   // m^2, put into the covariance along such directions
+  // m (rad x 1 m): a converged pose needs every direction's std (after the variance
+  // factor) below this; a corridor pinned by one weak corner is not converged.
+  double max_converged_std = 0.1;
   // Gates after convergence: a pair beyond them is a mismatch; the worst is dropped and
   // the minimisation repeated.
   // The matcher's tolerances (bindisterr 0.5 m) let near-alternatives through, e.g. a
