@@ -24,6 +24,8 @@ std::string ValidateOptions(const ContourFittingOptions& o) {
     why << "step_resolution must be > 0, gradient_tolerance and min_vertex_change >= 0";
   else if (!(o.damping > 0.0))
     why << "damping must be > 0, got " << o.damping;
+  else if (!(o.min_curvature >= 0.0))
+    why << "min_curvature must be >= 0 m, got " << o.min_curvature;
   return why.str();
 }
 
@@ -201,7 +203,7 @@ ContourFittingResult FitContours(const std::vector<int>& ids, const std::vector<
       if (!prob.free[v]) {
         dir[v].setZero();
       } else if (o.precondition) {
-        const double mu = o.damping * h[v].trace() + 1e-12;
+        const double mu = o.damping * h[v].trace() + o.min_curvature + 1e-12;
         dir[v] = -(h[v] + mu * Eigen::Matrix2d::Identity()).ldlt().solve(g[v]);
       } else {
         dir[v] = -g[v];

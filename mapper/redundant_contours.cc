@@ -1,6 +1,7 @@
 #include "mapper/redundant_contours.h"
 
 #include <algorithm>
+#include <cmath>
 #include <vector>
 
 namespace minenav::mapper {
@@ -31,7 +32,6 @@ int RemoveRedundantContours(ContourMap& map, const RedundantContourOptions& o) {
     if (!c) continue;
     const int n = c->NumPoints();
     std::vector<bool> redundant(static_cast<size_t>(n), false);
-    int count = 0;
     for (int v = 0; v < n; ++v) {
       const Eigen::Vector2d& p = c->points[static_cast<size_t>(v)];
       const Eigen::Vector2d normal = VertexNormal(*c, v);
@@ -43,11 +43,29 @@ int RemoveRedundantContours(ContourMap& map, const RedundantContourOptions& o) {
         if (d.norm() <= 0.0) return;
         const Eigen::Vector2d sn = Eigen::Vector2d(-d.y(), d.x()).normalized();
         if (sn.dot(normal) < o.min_alignment) return;
-        if (PointToSegmentDistance(p, s) <= o.distance) hit = true;
+        const double t = (p - s.a).dot(d) / d.squaredNorm();  // within the perpendicular band?
+        if (t < 0.0 || t > 1.0) return;
+        if (std::abs(sn.dot(p - s.a)) <= o.distance) hit = true;
       });
       redundant[static_cast<size_t>(v)] = hit;
-      count += hit ? 1 : 0;
     }
+    // Keep only runs of redundant vertices that are long enough.
+    for (int v = 0; v < n;) {
+      if (!redundant[static_cast<size_t>(v)]) {
+        ++v;
+        continue;
+      }
+      int e = v;
+      while (e + 1 < n && redundant[static_cast<size_t>(e + 1)]) ++e;
+      double length = 0.0;
+      for (int k = v; k < e; ++k)
+        length += (c->points[static_cast<size_t>(k + 1)] - c->points[static_cast<size_t>(k)]).norm();
+      if (length < o.min_run_length)
+        for (int k = v; k <= e; ++k) redundant[static_cast<size_t>(k)] = false;
+      v = e + 1;
+    }
+    int count = 0;
+    for (const bool r : redundant) count += r ? 1 : 0;
     if (count == 0) continue;
     removed += count;
     // Keep the maximal runs of non-redundant vertices as contours of their own.

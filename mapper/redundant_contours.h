@@ -17,6 +17,10 @@ struct RedundantContourOptions {
   double distance = 0.4;
   // Cosine of the largest angle between the two contours' normals (same facing).
   double min_alignment = 0.8;
+  // m; only runs of redundant vertices at least this long (along the contour) are removed,
+  // so a small object standing close to a wall (a post, a crib block) is not taken for a
+  // copy of the wall, nor the wall for a copy of it.
+  double min_run_length = 1.0;
 };
 
 // Returns the number of vertices removed.

@@ -29,5 +29,17 @@ TEST(RedundantContoursTest, RemovesTheNewerCopyOfAWallAndKeepsTheRest) {
   EXPECT_EQ(RemoveRedundantContours(map), 0);
 }
 
+TEST(RedundantContoursTest, APostBesideAWallIsNotACopyOfIt) {
+  ContourMap map;
+  // A post 0.3 m square standing 0.3 m in front of a wall (free space y > 0): its front face
+  // faces the same way as the wall and lies within the distance, but it is short.
+  map.Create(ResamplePolyline({{0, 0}, {10, 0}}, false, 0.5));
+  map.Create({{5.3, 0.3}, {5.3, 0.6}, {5.0, 0.6}, {5.0, 0.3}}, true);
+  const int wall_later = map.Create(ResamplePolyline({{10, 0}, {12, 0}}, false, 0.5));
+  EXPECT_EQ(RemoveRedundantContours(map), 0);
+  EXPECT_EQ(map.NumContours(), 3);
+  EXPECT_TRUE(map.Find(wall_later));
+}
+
 }  // namespace
 }  // namespace minenav::mapper
