@@ -51,7 +51,10 @@ std::optional<double> RaySegmentIntersection(const Eigen::Vector2d& origin,
   const Eigen::Vector2d w = s.a - origin;
   const double r = Cross(w, e) / denom;
   const double u = Cross(w, dir) / denom;
-  if (r < 0.0 || u < 0.0 || u > 1.0) return std::nullopt;
+  // A ray aimed exactly at the vertex two segments share must hit one of them: rounding
+  // can put u a hair outside [0, 1] on both, so the ends get a tolerance of a few ulps.
+  constexpr double kEndTolerance = 1e-12;
+  if (r < 0.0 || u < -kEndTolerance || u > 1.0 + kEndTolerance) return std::nullopt;
   return r;
 }
 

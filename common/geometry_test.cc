@@ -55,6 +55,23 @@ TEST(GeometryTest, RayHitsNearestWall) {
   EXPECT_FALSE(CastRay({0, 0}, 0.0, walls, 2.5));  // beyond max range
 }
 
+TEST(GeometryTest, RayThroughASharedVertexHitsAWall) {
+  // A closed polygon around the origin's neighbourhood: rays aimed exactly at its
+  // vertices must not slip between the two segments meeting there.
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-20, 20);
+  for (int trial = 0; trial < 2000; ++trial) {
+    const Eigen::Vector2d v(u(rng), u(rng));
+    const Eigen::Vector2d p(u(rng), u(rng)), q(u(rng), u(rng));
+    const std::vector<Segment> walls = {{p, v}, {v, q}};
+    const Eigen::Vector2d origin(u(rng), u(rng));
+    const Eigen::Vector2d d = v - origin;
+    const auto hit = CastRay(origin, std::atan2(d.y(), d.x()), walls, 1e3);
+    ASSERT_TRUE(hit) << "ray at vertex (" << v.transpose() << ") from (" << origin.transpose() << ") missed";
+    EXPECT_LE(hit->range, d.norm() + 1e-9);
+  }
+}
+
 TEST(GeometryTest, SegmentIntersection) {
   const auto x = SegmentIntersection(Segment(0, 0, 2, 2), Segment(0, 2, 2, 0));
   ASSERT_TRUE(x);
