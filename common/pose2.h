@@ -49,6 +49,13 @@ struct Pose2 {
 // The motion from `from` to `to` expressed in `from`'s frame: from^-1 * to.
 inline Pose2 Between(const Pose2& from, const Pose2& to) { return from.inverse() * to; }
 
+// The pose a fraction f of the way from a to b: position linearly, heading the shorter
+// way round. f = 0 gives a, f = 1 gives b.
+inline Pose2 InterpolatePose(const Pose2& a, const Pose2& b, double f) {
+  return {a.x + f * (b.x - a.x), a.y + f * (b.y - a.y),
+          NormalizeAngle(a.theta + f * NormalizeAngle(b.theta - a.theta))};
+}
+
 inline double TranslationDistance(const Pose2& a, const Pose2& b) {
   return std::hypot(a.x - b.x, a.y - b.y);
 }

@@ -97,8 +97,7 @@ std::optional<Pose2> PoseAt(const std::vector<StampedPose>& poses, int64_t utime
   const StampedPose& b = *it;
   if (b.utime - a.utime > max_gap_us) return std::nullopt;
   const double s = static_cast<double>(utime - a.utime) / static_cast<double>(b.utime - a.utime);
-  return Pose2(a.pose.x + s * (b.pose.x - a.pose.x), a.pose.y + s * (b.pose.y - a.pose.y),
-               NormalizeAngle(a.pose.theta + s * NormalizeAngle(b.pose.theta - a.pose.theta)));
+  return InterpolatePose(a.pose, b.pose, s);
 }
 
 std::string ScansToCsv(const std::vector<LadarScan>& scans, bool valid_only) {

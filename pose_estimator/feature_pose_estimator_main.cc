@@ -21,6 +21,7 @@
 #include "common/config.h"
 #include "common/file_io.h"
 #include "common/log.h"
+#include "common/pose_at_time.h"
 #include "common/node/bus.h"
 #include "common/node/conversions.h"
 #include "common/node/node_runtime.h"
@@ -78,29 +79,6 @@ void Declare(ConfigSchema& s, ProcessOptions& p, FeaturePoseEstimatorOptions& e)
       "Exit codes: 0 ok, 2 bad flag or input file, 3 runtime failure.\n");
 }
 
-// Odometry pose at `utime` from the readings (sorted by utime), or nothing if none is
-// within max_gap_us.
-std::optional<Pose2> OdometryAt(const std::deque<OdometryReading>& odo, int64_t utime, int64_t max_gap_us) {
-  if (odo.empty()) return std::nullopt;
-  auto after = std::lower_bound(odo.begin(), odo.end(), utime,
-                                [](const OdometryReading& r, int64_t u) { return r.utime < u; });
-  if (after != odo.end() && after->utime == utime) return after->pose;
-  if (after == odo.end()) {
-    if (utime - odo.back().utime > max_gap_us) return std::nullopt;
-    return odo.back().pose;
-  }
-  if (after == odo.begin()) {
-    if (after->utime - utime > max_gap_us) return std::nullopt;
-    return after->pose;
-  }
-  const OdometryReading& a = *(after - 1);
-  const OdometryReading& b = *after;
-  if (b.utime - a.utime > 2 * max_gap_us) return std::nullopt;
-  const double f = static_cast<double>(utime - a.utime) / static_cast<double>(b.utime - a.utime);
-  return Pose2(a.pose.x + f * (b.pose.x - a.pose.x), a.pose.y + f * (b.pose.y - a.pose.y),
-               NormalizeAngle(a.pose.theta + f * NormalizeAngle(b.pose.theta - a.pose.theta)));
-}
-
 int Main(int argc, char** argv) {
   ConfigSchema schema("feature_pose_estimator",
                       "Feature-based pose estimator (thesis ch. 2): scans + odometry + line map -> POSE_FPE.");
@@ -146,7 +124,7 @@ int Main(int argc, char** argv) {
   auto process = [&](const LadarScan& scan, bool at_shutdown) -> bool {
     const bool have_later = !odometry.empty() && odometry.back().utime >= scan.utime;
     if (!have_later && !at_shutdown) return false;  // wait for odometry
-    const std::optional<Pose2> odo = OdometryAt(odometry, scan.utime, max_gap_us);
+    const std::optional<Pose2> odo = PoseAtTime(odometry, scan.utime, max_gap_us);
     if (!odo) {
       ++skipped;
       MINENAV_LOG(kWarn) << "scan " << scan.scan_id << " at " << scan.utime << ": no odometry within "

@@ -28,6 +28,7 @@
 #include "common/config.h"
 #include "common/file_io.h"
 #include "common/log.h"
+#include "common/pose_at_time.h"
 #include "common/node/bus.h"
 #include "common/node/conversions.h"
 #include "common/node/node_runtime.h"
@@ -101,35 +102,6 @@ void Declare(ConfigSchema& s, ProcessOptions& p, IconicEstimatorOptions& e) {
       "  iconic_pose_estimator --log survey.lcm --mode simultaneous --poses-out est.csv\n"
       "  iconic_pose_estimator --map mine.json                               (live)\n"
       "Exit codes: 0 ok, 2 bad flag or input file, 3 runtime failure.\n");
-}
-
-// Odometry pose at `utime` (readings sorted by utime): exact, interpolated, or the nearest
-// within max_gap_us.
-std::optional<Pose2> OdometryAt(const std::deque<OdometryReading>& odo, int64_t utime, int64_t max_gap_us) {
-  if (odo.empty()) return std::nullopt;
-  auto after = std::lower_bound(odo.begin(), odo.end(), utime,
-                                [](const OdometryReading& r, int64_t u) { return r.utime < u; });
-  if (after != odo.end() && after->utime == utime) return after->pose;
-  if (after == odo.end()) {
-    if (utime - odo.back().utime > max_gap_us) return std::nullopt;
-    return odo.back().pose;
-  }
-  if (after == odo.begin()) {
-    if (after->utime - utime > max_gap_us) return std::nullopt;
-    return after->pose;
-  }
-  const OdometryReading& a = *(after - 1);
-  const OdometryReading& b = *after;
-  if (b.utime - a.utime > 2 * max_gap_us) return std::nullopt;
-  const double f = static_cast<double>(utime - a.utime) / static_cast<double>(b.utime - a.utime);
-  return Pose2(a.pose.x + f * (b.pose.x - a.pose.x), a.pose.y + f * (b.pose.y - a.pose.y),
-               NormalizeAngle(a.pose.theta + f * NormalizeAngle(b.pose.theta - a.pose.theta)));
-}
-
-bool HasExactOdometry(const std::deque<OdometryReading>& odo, int64_t utime) {
-  auto it = std::lower_bound(odo.begin(), odo.end(), utime,
-                             [](const OdometryReading& r, int64_t u) { return r.utime < u; });
-  return it != odo.end() && it->utime == utime;
 }
 
 // Contours as segments; a compressed map is inflated first (contour_map_t's comment).
@@ -230,7 +202,7 @@ int Main(int argc, char** argv) {
   auto process = [&](const LadarScan& scan, bool at_shutdown) -> bool {
     const bool have_later = !odometry.empty() && odometry.back().utime >= scan.utime;
     if (!have_later && !at_shutdown) return false;  // wait for odometry
-    const std::optional<Pose2> odo = OdometryAt(odometry, scan.utime, max_gap_us);
+    const std::optional<Pose2> odo = PoseAtTime(odometry, scan.utime, max_gap_us);
     if (!odo) {
       ++skipped;
       MINENAV_LOG(kWarn) << "scan " << scan.scan_id << " at " << scan.utime << ": no odometry within "
@@ -238,7 +210,7 @@ int Main(int argc, char** argv) {
       runtime.SetStatus(heartbeat_t::WARN, "no odometry for a scan");
       return true;
     }
-    const bool exact = HasExactOdometry(odometry, scan.utime);
+    const bool exact = HasReadingAt(odometry, scan.utime);
     Pose2 initial = *odo;
     if (last && (p.initial == "chained" || (p.initial == "auto" && !(exact && batch))))
       initial = last->first * Between(last->second, *odo);

@@ -150,8 +150,7 @@ bool SameSegments(const std::vector<Segment>& a, const std::vector<Segment>& b) 
 Pose2 Interpolate(const TruthReading& a, const TruthReading& b, int64_t t) {
   if (b.utime <= a.utime) return b.pose;
   const double f = static_cast<double>(t - a.utime) / static_cast<double>(b.utime - a.utime);
-  return Pose2(a.pose.x + f * (b.pose.x - a.pose.x), a.pose.y + f * (b.pose.y - a.pose.y),
-               NormalizeAngle(a.pose.theta + f * NormalizeAngle(b.pose.theta - a.pose.theta)));
+  return InterpolatePose(a.pose, b.pose, f);
 }
 
 int RunSimulation(NodeRuntime& runtime, const LadarDriverOptions& o, const LadarModel& model,

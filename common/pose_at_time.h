@@ -1,0 +1,47 @@
+#pragma once
+// The pose at a given time from a time-sorted sequence of stamped poses (odometry, truth,
+// estimates): the exact reading, else interpolated between the two around it, else the
+// nearest one at the ends when it is within max_gap_us. Works on any container of
+// readings with `utime` (us) and `pose` members (OdometryReading, TruthReading,
+// StampedPose).
+
+#include <algorithm>
+#include <cstdint>
+#include <optional>
+
+#include "common/pose2.h"
+
+namespace minenav {
+
+template <typename Readings>
+std::optional<Pose2> PoseAtTime(const Readings& readings, int64_t utime, int64_t max_gap_us) {
+  if (readings.empty()) return std::nullopt;
+  const auto after = std::lower_bound(readings.begin(), readings.end(), utime,
+                                      [](const auto& r, int64_t t) { return r.utime < t; });
+  if (after != readings.end() && after->utime == utime) return after->pose;
+  if (after == readings.end()) {
+    if (utime - std::prev(after)->utime > max_gap_us) return std::nullopt;
+    return std::prev(after)->pose;
+  }
+  if (after == readings.begin()) {
+    if (after->utime - utime > max_gap_us) return std::nullopt;
+    return after->pose;
+  }
+  const auto& a = *std::prev(after);
+  const auto& b = *after;
+  // Between two readings the gap may be twice max_gap: each is then within max_gap of
+  // the middle.
+  if (b.utime - a.utime > 2 * max_gap_us) return std::nullopt;
+  const double f = static_cast<double>(utime - a.utime) / static_cast<double>(b.utime - a.utime);
+  return InterpolatePose(a.pose, b.pose, f);
+}
+
+// True when a reading is stamped exactly `utime`.
+template <typename Readings>
+bool HasReadingAt(const Readings& readings, int64_t utime) {
+  const auto it = std::lower_bound(readings.begin(), readings.end(), utime,
+                                   [](const auto& r, int64_t t) { return r.utime < t; });
+  return it != readings.end() && it->utime == utime;
+}
+
+}  // namespace minenav
