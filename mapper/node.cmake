@@ -1,0 +1,12 @@
+# The contour_mapper process (batch over logs for now).
+minenav_executable(contour_mapper contour_mapper_main.cc)
+target_link_libraries(contour_mapper PRIVATE minenav_mapper minenav_logger_core minenav_node)
+
+if(EXISTS "${CMAKE_SOURCE_DIR}/tests/child_process.cc")
+  minenav_test(NAME contour_mapper_process_test
+    SOURCES ${CMAKE_CURRENT_LIST_DIR}/contour_mapper_process_test.cc "${CMAKE_SOURCE_DIR}/tests/child_process.cc"
+    LIBS minenav_mapper minenav_common)
+  target_compile_definitions(contour_mapper_process_test PRIVATE
+    MINENAV_CONTOUR_MAPPER_BIN="$<TARGET_FILE:contour_mapper>" MINENAV_LOG_TOOL_BIN="$<TARGET_FILE:log_tool>")
+  add_dependencies(contour_mapper_process_test contour_mapper log_tool)
+endif()
