@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/bench_util.h"
 #include "common/angle.h"
 #include "pose_estimator/feature_pose_estimator.h"
 #include "pose_estimator/iconic_estimator.h"
@@ -26,53 +27,13 @@ inline double Now() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
-inline double Median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
-inline double Max(const std::vector<double>& v) { return v.empty() ? 0.0 : *std::max_element(v.begin(), v.end()); }
-
-struct BenchArgs {
-  std::string json_out;
-  bool quick = false;
-};
-
-// --json-out FILE and --quick; anything else is a usage error (exit 2).
-inline BenchArgs ParseBenchArgs(int argc, char** argv, const char* usage) {
-  BenchArgs args;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a == "--json-out" && i + 1 < argc) {
-      args.json_out = argv[++i];
-    } else if (a.rfind("--json-out=", 0) == 0) {
-      args.json_out = a.substr(11);
-    } else if (a == "--quick") {
-      args.quick = true;
-    } else if (a == "--help" || a == "-h") {
-      std::cout << usage << "\n";
-      std::exit(0);
-    } else {
-      std::cerr << argv[0] << ": unknown argument '" << a << "'\n" << usage << "\n";
-      std::exit(2);
-    }
-  }
-  return args;
-}
-
-inline void WriteJson(const std::string& path, const nlohmann::json& j) {
-  if (path.empty()) return;
-  std::ofstream out(path);
-  if (!out) {
-    std::cerr << "cannot write " << path << "\n";
-    std::exit(3);
-  }
-  out << j.dump(2) << "\n";
-}
-
-inline const char* Verdict(bool met) { return met ? "MET" : "MISSED"; }
+// Statistics, the command line and the JSON report are shared with every benchmark.
+using bench::BenchArgs;
+using bench::Max;
+using bench::Median;
+using bench::ParseBenchArgs;
+using bench::Verdict;
+using bench::WriteJson;
 
 // A converged estimate within these bounds of the truth counts as a success.
 inline constexpr double kSuccessPosition = 0.10;          // m

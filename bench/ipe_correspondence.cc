@@ -11,7 +11,7 @@
 #include <cstdio>
 #include <random>
 
-#include "bench/ipe_bench_util.h"
+#include "bench/bench_util.h"
 #include "common/angle.h"
 #include "pose_estimator/brute_force_correspondence.h"
 #include "pose_estimator/grid_search_correspondence.h"

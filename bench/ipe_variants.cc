@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <random>
 
-#include "bench/ipe_bench_util.h"
+#include "bench/bench_util.h"
 #include "common/angle.h"
 #include "pose_estimator/iconic_estimator.h"
 #include "sensor_driver/ladar_simulator.h"

@@ -1,5 +1,5 @@
 #pragma once
-// Small helpers shared by the iconic pose estimator's benchmarks (bench/ipe_*.cc): timing,
+// Small helpers shared by the benchmarks (bench/*.cc): thread CPU time,
 // medians, a printed table and a JSON report (--json-out FILE).
 
 #include <algorithm>
