@@ -90,6 +90,19 @@ class ContourMap {
   // Re-spaces the vertices at about nominal_length.
   void Resample(int id, double nominal_length);
 
+  // --- checkpoints (map_checkpoint.h): the next id to hand out, and a map rebuilt with the
+  // given contours (ids kept; the caller has validated them: unique, < next_id, sizes).
+  int next_id() const { return next_id_; }
+  void Restore(std::vector<Contour> contours, int next_id) {
+    Clear();
+    for (Contour& c : contours) {
+      Reindex(c);
+      const int id = c.id;
+      contours_.emplace(id, std::move(c));
+    }
+    next_id_ = next_id;
+  }
+
  private:
   Contour& Mutable(int id);
   void Reindex(const Contour& c) { grid_.Insert(c); }

@@ -89,6 +89,11 @@ class ContourMapper {
 
   // Replaces the map (e.g. loaded from a file); scans are kept.
   void SetMap(ContourMap map) { map_ = std::move(map); }
+  // Replaces the whole state (checkpoint restore, map_checkpoint.h).
+  void RestoreState(ContourMap map, std::vector<MappedScan> scans) {
+    map_ = std::move(map);
+    scans_ = std::move(scans);
+  }
 
  private:
   ContourMapperOptions options_;

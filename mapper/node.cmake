@@ -1,3 +1,11 @@
+# The mapping session (the policy batch and live share) and checkpoints: no LCM.
+minenav_algorithm_library(minenav_mapping_session
+  ${CMAKE_CURRENT_LIST_DIR}/mapping_session.cc)
+target_link_libraries(minenav_mapping_session PUBLIC minenav_mapper)
+minenav_test(NAME mapping_session_test NO_LCM
+  SOURCES ${CMAKE_CURRENT_LIST_DIR}/mapping_session_test.cc
+  LIBS minenav_mapping_session)
+
 # The contour_mapper process (batch over logs for now).
 minenav_executable(contour_mapper contour_mapper_main.cc)
 target_link_libraries(contour_mapper PRIVATE minenav_mapper minenav_logger_core minenav_node)
