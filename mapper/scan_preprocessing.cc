@@ -18,6 +18,8 @@ std::string ValidateOptions(const ScanPreprocessingOptions& o) {
     why << "median_filter_size must be odd and >= 1, got " << o.median_filter_size;
   else if (!(o.discontinuity_threshold > 0.0))
     why << "discontinuity_threshold must be > 0 m, got " << o.discontinuity_threshold;
+  else if (!(o.discontinuity_angle >= 0.0 && o.discontinuity_angle < kPi / 2.0))
+    why << "discontinuity_angle must be in [0, pi/2) rad, got " << o.discontinuity_angle;
   else if (o.min_points_per_partial_scan < 2)
     why << "min_points_per_partial_scan must be >= 2, got " << o.min_points_per_partial_scan;
   else if (!(o.min_point_spacing >= 0.0))
@@ -49,6 +51,14 @@ std::vector<float> MedianFilterRanges(const std::vector<float>& ranges, const st
     out[static_cast<size_t>(i)] = *mid;
   }
   return out;
+}
+
+double DiscontinuityGap(double range, double angle_step, const ScanPreprocessingOptions& options) {
+  const double step = std::abs(angle_step);
+  // Off, or an angle step too coarse for the incidence asked: the fixed threshold alone.
+  if (options.discontinuity_angle <= step) return options.discontinuity_threshold;
+  return std::max(options.discontinuity_threshold,
+                  range * std::sin(step) / std::sin(options.discontinuity_angle - step));
 }
 
 std::vector<Eigen::Vector2d> ReduceDensity(const std::vector<Eigen::Vector2d>& points, double min_spacing) {
@@ -97,7 +107,10 @@ PreprocessedScan PreprocessScan(const LadarScan& scan, const ScanPreprocessingOp
       open = false;
       continue;
     }
-    if (open && (pts[i] - runs.back().points.back()).norm() <= options.discontinuity_threshold) {
+    // The gap allowed grows with the nearer reading's range (nearer: a far point after a
+    // near one is an occlusion, not the same wall).
+    const double near = open ? std::min(ranges[i], ranges[static_cast<size_t>(runs.back().last)]) : 0.0;
+    if (open && (pts[i] - runs.back().points.back()).norm() <= DiscontinuityGap(near, scan.angle_step, options)) {
       runs.back().points.push_back(pts[i]);
       runs.back().last = static_cast<int>(i);
     } else {
@@ -109,7 +122,8 @@ PreprocessedScan PreprocessScan(const LadarScan& scan, const ScanPreprocessingOp
   const double coverage = std::abs(scan.angle_step) * static_cast<double>(n);
   if (runs.size() >= 2 && coverage >= 2.0 * kPi - 1.5 * std::abs(scan.angle_step) && valid[0] &&
       valid[n - 1] && runs.front().first == 0 && runs.back().last == static_cast<int>(n - 1) &&
-      (pts[0] - pts[n - 1]).norm() <= options.discontinuity_threshold) {
+      (pts[0] - pts[n - 1]).norm() <=
+          DiscontinuityGap(std::min(ranges[0], ranges[n - 1]), scan.angle_step, options)) {
     Run merged = std::move(runs.back());
     runs.pop_back();
     merged.points.insert(merged.points.end(), runs.front().points.begin(), runs.front().points.end());

@@ -1,7 +1,7 @@
 #pragma once
 // Scan preprocessing for the contour mapper (thesis 4.2, 7.2.3): trim to a range interval,
-// median filter, segmentation into partial scans at discontinuities, and optional density
-// reduction.
+// median filter, segmentation into partial scans at discontinuities (fixed, or adaptive to
+// range for sparse scanners), and optional density reduction.
 //
 // Orientation: every partial scan lists its points in order of increasing bearing as seen
 // from the sensor (counter-clockwise around the sensor), whatever the sign of the scan's
@@ -26,6 +26,13 @@ struct ScanPreprocessingOptions {
   int median_filter_size = 1;
   // m; consecutive points farther apart than this start a new partial scan.
   double discontinuity_threshold = 0.5;
+  // rad; range-adaptive discontinuity (adaptive breakpoint detector, Borges & Aldon 2004):
+  // the gap allowed after a reading at range r is raised to r·sin Δφ / sin(λ − Δφ), the gap a
+  // wall seen at incidence λ to the beam leaves between readings Δφ apart. Sparse scans
+  // (1° SICK readings at 10–40 m) otherwise break far walls into pieces too short to keep,
+  // while a fixed threshold large enough for them would join near objects. 0 = off (the
+  // fixed threshold alone, as in the thesis); must exceed the angle step when on.
+  double discontinuity_angle = 0.0;
   // Points; partial scans with fewer points are dropped (isolated mixed pixels, clutter).
   int min_points_per_partial_scan = 4;
   // m; density reduction (7.2.3): within a partial scan keep a point only when it is at
@@ -60,6 +67,10 @@ std::vector<float> MedianFilterRanges(const std::vector<float>& ranges, const st
 // Whole pipeline. Invalid readings (NaN, out of the range interval) break partial scans;
 // on a full 360° scan the partial scans that meet across the seam are merged.
 PreprocessedScan PreprocessScan(const LadarScan& scan, const ScanPreprocessingOptions& options);
+
+// The largest gap between consecutive points that does not start a new partial scan, after
+// a reading at `range` m with readings `angle_step` rad apart (see discontinuity_angle).
+double DiscontinuityGap(double range, double angle_step, const ScanPreprocessingOptions& options);
 
 // Density reduction on one polyline (keeps first and last point).
 std::vector<Eigen::Vector2d> ReduceDensity(const std::vector<Eigen::Vector2d>& points, double min_spacing);

@@ -82,6 +82,48 @@ TEST(ScanPreprocessingTest, OcclusionSplitsPartialScansAndTrimDropsFarWalls) {
   for (const auto& q : t.partial_scans[0].points) EXPECT_NEAR(q.x(), 3.0, 1e-6);
 }
 
+TEST(ScanPreprocessingTest, AdaptiveDiscontinuityKeepsSparseFarWallsAndSplitsNearGaps) {
+  // 1° readings (SICK-like) in a 60 m square room: the walls, 30–42 m away, have their
+  // readings 0.52–1.05 m apart. A fixed 0.5 m threshold leaves only single points (all
+  // dropped); the adaptive gap (incidence 10°) keeps the whole room as one partial scan.
+  testing::ScanSpec spec;
+  spec.num_points = 360;
+  spec.max_range = 80.0;
+  const LadarScan far = MakeScan(Rectangle(-30, -30, 30, 30), Pose2(0, 0, 0.1), spec);
+  EXPECT_EQ(PreprocessScan(far, {}).NumPoints(), 0);
+  ScanPreprocessingOptions adaptive;
+  adaptive.discontinuity_angle = DegToRad(10.0);
+  const PreprocessedScan kept = PreprocessScan(far, adaptive);
+  ASSERT_EQ(kept.partial_scans.size(), 1u);
+  EXPECT_EQ(kept.NumPoints(), 360);
+  // The gap formula: at 30 m, Δφ 1°, λ 10°: 30 sin 1° / sin 9° = 3.35 m; near, the fixed floor.
+  EXPECT_NEAR(DiscontinuityGap(30.0, DegToRad(1.0), adaptive), 30.0 * std::sin(DegToRad(1.0)) / std::sin(DegToRad(9.0)),
+              1e-12);
+  EXPECT_EQ(DiscontinuityGap(2.0, DegToRad(1.0), adaptive), 0.5);
+  EXPECT_EQ(DiscontinuityGap(30.0, DegToRad(1.0), {}), 0.5);
+  // Near objects 1 m apart at 3 m stay separate: two posts in a big room are two partial
+  // scans each, apart from the walls, with and without the adaptive gap.
+  auto world = Rectangle(-30, -30, 30, 30);
+  world = testing::Concat(world, Rectangle(3.0, -1.0, 3.4, -0.5));
+  world = testing::Concat(world, Rectangle(3.0, 0.5, 3.4, 1.0));
+  spec.num_points = 720;  // 0.5°: the posts get enough readings to be kept
+  const LadarScan posts = MakeScan(world, Pose2(0, 0, 0), spec);
+  int near_partials = 0;
+  for (const PartialScan& ps : PreprocessScan(posts, adaptive).partial_scans) {
+    bool near_post = true;
+    for (const auto& q : ps.points) near_post = near_post && q.norm() < 4.0;
+    if (near_post) {
+      ++near_partials;
+    } else {
+      for (const auto& q : ps.points) EXPECT_GT(q.norm(), 29.0);  // no wall run swallows a post
+    }
+  }
+  EXPECT_EQ(near_partials, 2);
+  ScanPreprocessingOptions bad;
+  bad.discontinuity_angle = -0.1;
+  EXPECT_NE(ValidateOptions(bad), "");
+}
+
 TEST(ScanPreprocessingTest, DensityReductionKeepsSpacingAndEnds) {
   std::vector<Eigen::Vector2d> line;
   for (int i = 0; i <= 100; ++i) line.emplace_back(0.01 * i, 0.0);
