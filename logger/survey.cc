@@ -77,6 +77,8 @@ void RunSurvey(const std::vector<std::vector<Segment>>& worlds, const std::vecto
     rec.truth = truth[k];
     rec.estimate = estimates[k];
     rec.estimate_covariance = covariance;
+    rec.world = stations[k].world;
+    rec.world_changed = k == 0 || stations[k].world != stations[k - 1].world;
     rec.scan = simulator.Simulate(*grids[w], truth[k], options.sensor_offset, rec.utime, static_cast<int64_t>(k));
     sink(rec);
     if (progress) progress(static_cast<int>(k + 1), static_cast<int>(stations.size()));

@@ -5,6 +5,12 @@
 // did: "sigma_x = 0.33, sigma_y = 0.33, sigma_theta = 3.33") or as dead reckoning
 // accumulated along the station sequence (what a real miner's odometry would give).
 //
+// A changing world (thesis 4.8): several worlds may be given and each station names the
+// one it sees (the stations CSV column `world`), so one survey shows doors opening, boxes
+// appearing or a face advancing between stations. Each record says which world was used
+// and whether it differs from the previous station's, so the log writer can record the
+// world when it becomes active.
+//
 // Plain C++ (no LCM): `log_tool survey` writes the records into a log. Deterministic for
 // a seed: ladar noise depends on (seed, scan_id); the initial estimates on the seed.
 
@@ -47,6 +53,8 @@ struct SurveyRecord {
   Pose2 truth;           // vehicle in the world frame
   Pose2 estimate;        // initial estimate (ODOMETRY)
   Eigen::Matrix3d estimate_covariance = Eigen::Matrix3d::Zero();  // known for kPoseNoise, else 0
+  int world = 0;                 // index into the worlds: the one this scan was ray-cast in
+  bool world_changed = false;    // first station, or a world other than the previous station's
   LadarScan scan;
 };
 

@@ -25,6 +25,8 @@ struct SurveyFlags {
   int64_t seed = 1;
   std::string pose_noise, drift;
   std::string scan_channel = "LADAR_SCAN", odometry_channel = "ODOMETRY", truth_channel = "SIM_TRUTH";
+  std::string world_channel = "SIM_WORLD", map_channel = "LINE_MAP";
+  std::string line_map = "none";  // none | first | each
   bool quiet = false;
   std::string config_world;  // --world flags are taken out before parsing; this gets a config file's `world =`
 };
@@ -80,6 +82,13 @@ void DeclareSurveyOptions(ConfigSchema* s, SurveyFlags* f, SurveyOptions* o) {
   s->AddChannel("odometry_channel", &f->odometry_channel, "writes", "minenav.odometry_t",
                 "initial pose estimates, same utime as the scan");
   s->AddChannel("truth_channel", &f->truth_channel, "writes", "minenav.vehicle_truth_t", "true poses");
+  s->AddChannel("world_channel", &f->world_channel, "writes", "minenav.line_map_t",
+                "the world the scans were cast in, when it becomes active (first station, and each change)");
+  s->AddChannel("map_channel", &f->map_channel, "writes", "minenav.line_map_t", "surveyed map (see --line-map)");
+  s->AddString("line_map", &f->line_map,
+               "what the map channel carries: none; first = the first station's world once (a map surveyed "
+               "before the changes); each = every world when it becomes active, like the world channel",
+               {"none", "first", "each"});
   s->AddBool("quiet", &f->quiet, "no progress on stderr");
   s->AddHelpEpilog(
       "Example:\n"
@@ -87,7 +96,11 @@ void DeclareSurveyOptions(ConfigSchema* s, SurveyFlags* f, SurveyOptions* o) {
       "      --pose-noise 0.33,0.33,3.33deg --seed 7 --out survey.lcm --truth-out truth.csv\n"
       "Without --pose-noise or --drift the initial estimates equal truth. Scan k has\n"
       "utime = start_utime + k * station_interval and scan_id = k; ODOMETRY (seq k) and\n"
-      "SIM_TRUTH (seq k) carry the same utime and precede the scan in the log.\n");
+      "SIM_TRUTH (seq k) carry the same utime and precede the scan in the log.\n"
+      "A changing world: repeat --world and give the stations CSV a column 'world' (x,y,theta,world;\n"
+      "an index into the --world list, default 0). SIM_WORLD (version 1, 2, ... per activation, name\n"
+      "'world K: FILE') is written with the utime of the first scan in each newly active world,\n"
+      "before that scan's ODOMETRY.\n");
 }
 
 void ParseInitialEstimates(const SurveyFlags& f, SurveyOptions* o) {
@@ -181,10 +194,19 @@ int RunSurveyCommand(const std::vector<std::string>& raw_args) {
     last_report = s;
     std::fprintf(stderr, "log_tool survey: %d/%d stations (%.1f s)\n", done, total, s);
   };
+  int64_t world_version = 0;  // activations so far: increases whenever the world changes
   try {
     RunSurvey(
         worlds, stations, options,
         [&](const SurveyRecord& r) {
+          if (r.world_changed) {
+            const auto w = static_cast<size_t>(r.world);
+            const std::string name = "world " + std::to_string(r.world) + ": " + world_paths[w];
+            ++world_version;
+            writer.WriteMessage(flags.world_channel, r.utime, SegmentsToLcm(worlds[w], r.utime, world_version, name));
+            if (flags.line_map == "each" || (flags.line_map == "first" && r.index == 0))
+              writer.WriteMessage(flags.map_channel, r.utime, SegmentsToLcm(worlds[w], r.utime, world_version, name));
+          }
           OdometryReading odo;
           odo.utime = r.utime;
           odo.seq = r.index;

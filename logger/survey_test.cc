@@ -216,6 +216,74 @@ TEST(Survey, EachStationSeesItsOwnWorld) {
   }
 }
 
+// The small mine changed twice (thesis 4.8): world 1 closes the entry between the two
+// pillars with a door at y = 10; world 2 has the door open again and a box (a vending
+// machine) standing against the south boundary wall.
+std::vector<std::vector<Segment>> ChangingSmallMine() {
+  const std::vector<Segment> mine = GenerateRoomAndPillarMine(SmallMine());
+  std::vector<Segment> door = mine;
+  door.emplace_back(17.4, 10.0, 24.6, 10.0);  // ends buried in the pillars (walls within 0.6 m of 18 and 24)
+  std::vector<Segment> box = mine;
+  const std::vector<Eigen::Vector2d> corners = {{8.0, 0.8}, {10.6, 0.8}, {10.4, 1.7}, {8.2, 1.7}};
+  for (size_t i = 0; i < corners.size(); ++i) box.emplace_back(corners[i], corners[(i + 1) % corners.size()]);
+  return {mine, door, box};
+}
+
+TEST(Survey, ScansOfAChangingWorldMatchBruteForceRayCastingInTheirOwnWorld) {
+  const auto worlds = ChangingSmallMine();
+  std::vector<Station> stations = ManyStations(36, 6);
+  const std::vector<int> sequence = {0, 0, 1, 1, 1, 2, 2, 0, 2};  // back and forth, runs and single steps
+  for (size_t k = 0; k < stations.size(); ++k) stations[k].world = sequence[k % sequence.size()];
+  SurveyOptions options;
+  options.sensor.num_points = 720;
+  options.sensor.angular_resolution = 0.0;
+  options.sensor.mixed_pixel_probability = 0.0;
+  options.sensor.range_resolution = 0.0;
+  options.seed = 13;
+  const double sigma = options.sensor.range_sigma;
+  Stats residual;
+  int valid = 0, within_4_sigma = 0;
+  // Readings whose true range differs between the station's world and another world by
+  // more than 10 sigma: where the change is visible. The scan must side with its own world.
+  int changed = 0, changed_own = 0;
+  const auto records = Survey(worlds, stations, options);
+  ASSERT_EQ(records.size(), stations.size());
+  for (size_t k = 0; k < records.size(); ++k) {
+    const SurveyRecord& r = records[k];
+    EXPECT_EQ(r.world, stations[k].world);
+    EXPECT_EQ(r.world_changed, k == 0 || stations[k].world != stations[k - 1].world) << k;
+    const auto& own = worlds[static_cast<size_t>(r.world)];
+    for (size_t i = 0; i < r.scan.ranges.size(); ++i) {
+      if (!r.scan.IsValid(i)) continue;
+      const double bearing = r.truth.theta + r.scan.Bearing(i);
+      const auto hit = CastRay(r.truth.translation(), bearing, own, 1e3);
+      ASSERT_TRUE(hit.has_value());
+      if (hit->range > options.sensor.max_range - 5 * sigma || hit->range < options.sensor.min_range + 5 * sigma)
+        continue;
+      const double e = r.scan.ranges[i] - hit->range;
+      residual.Add(e);
+      ++valid;
+      if (std::abs(e) < 4 * sigma) ++within_4_sigma;
+      for (size_t w = 0; w < worlds.size(); ++w) {
+        if (static_cast<int>(w) == r.world) continue;
+        const auto other = CastRay(r.truth.translation(), bearing, worlds[w], 1e3);
+        ASSERT_TRUE(other.has_value());
+        if (std::abs(other->range - hit->range) < 10 * sigma) continue;
+        ++changed;
+        if (std::abs(e) < std::abs(r.scan.ranges[i] - other->range)) ++changed_own;
+      }
+    }
+  }
+  ASSERT_GT(valid, 15000);
+  EXPECT_NEAR(residual.mean(), 0.0, 0.005);
+  EXPECT_NEAR(residual.stddev(), sigma, 0.15 * sigma);
+  EXPECT_GT(static_cast<double>(within_4_sigma) / valid, 0.995);
+  // The door and the box are seen from many stations; every such reading is nearer its own
+  // world's wall than the other world's.
+  EXPECT_GT(changed, 500);  // 1119 with this seed
+  EXPECT_EQ(changed_own, changed);
+}
+
 TEST(Survey, RejectsBadOptionsInOneLine) {
   SurveyOptions options;
   options.station_interval = 0.0;

@@ -4,6 +4,13 @@
 // the surveyed map estimators may use (LINE_MAP; for the indoor mockup it lacks the
 // clutter, thesis 2.2). The vehicle stops by itself when commands go stale.
 //
+// A changing world (thesis 4.8): --world may be repeated and --world-change-at gives the
+// times (s since the first tick) at which world k+1 replaces world k, e.g. a door opens
+// while the fleet runs. SIM_WORLD is published at once, before the SIM_TRUTH sample of that
+// tick, so the ladar (which ray-casts the latest SIM_WORLD) casts every scan whose utime
+// is later than the previous truth sample in the new world. LINE_MAP stays the first world
+// (a map surveyed before the changes) unless --line-map each.
+//
 // Time: each tick integrates the motion over the clock time since the previous tick (live:
 // wall clock; batch over a log of commands: log time), so a batch run is deterministic.
 // A command's age is measured from when it was received, not from its own utime, so a
@@ -13,6 +20,7 @@
 #include <cmath>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "common/angle.h"
 #include "common/config.h"
@@ -36,7 +44,9 @@ namespace minenav {
 namespace {
 
 struct VehicleSimOptions {
-  std::string world;              // JSON file; "" = generate
+  std::string world;              // JSON file; "" = generate (on the command line: repeatable)
+  std::string world_change_at;    // "T1,T2,..." s since the first tick; one per extra --world
+  std::string line_map = "first"; // first | each: what LINE_MAP carries in a changing world
   std::string generate = "mine";  // mine | research | mockup
   int64_t seed = 1;
   int pillar_rows = 2;
@@ -65,7 +75,16 @@ struct VehicleSimOptions {
 };
 
 void Declare(ConfigSchema& s, VehicleSimOptions& o) {
-  s.AddString("world", &o.world, "world JSON file ({\"segments\": [[x1,y1,x2,y2],...]}); empty = --generate");
+  s.AddString("world", &o.world,
+              "world JSON file ({\"segments\": [[x1,y1,x2,y2],...]}); empty = --generate. Repeat the flag for a "
+              "world that changes while running (see --world-change-at)");
+  s.AddString("world_change_at", &o.world_change_at,
+              "[s since the first tick, comma-separated, increasing] when world 2, 3, ... of the repeated --world "
+              "replaces the previous one; one time per extra --world");
+  s.AddString("line_map", &o.line_map,
+              "what LINE_MAP carries when the world changes: first = the first world (surveyed before the "
+              "changes), each = the current world",
+              {"first", "each"});
   s.AddString("generate", &o.generate, "built-in world when --world is empty (thesis 5.2.1, 5.3, 2.2)",
               {"mine", "research", "mockup"});
   s.AddInt64("seed", &o.seed, "seed of the world generator and of the odometry noise", 0);
@@ -122,23 +141,77 @@ void Declare(ConfigSchema& s, VehicleSimOptions& o) {
       "  vehicle_sim --generate mine --seed 7\n"
       "  vehicle_sim --world mine.json --start-pose 3,3,0 --max-forward-speed 0.3\n"
       "  vehicle_sim --log commands.lcm --log-out run.lcm     (batch, deterministic)\n"
+      "  vehicle_sim --world closed.json --world open.json --world-change-at 30   (a door opens at 30 s)\n"
       "Exit codes: 0 ok, 2 bad flag or input file, 3 runtime failure.\n");
 }
 
 struct Scenario {
-  std::vector<Segment> world;  // what the ladar sees
+  std::vector<Segment> world;  // what the ladar sees first
   std::vector<Segment> map;    // the surveyed map
   Pose2 start;
   std::string name;
+  // A changing world: later_worlds[i] replaces the world at change_at_us[i] (us since the
+  // first tick), named later_names[i].
+  std::vector<std::vector<Segment>> later_worlds;
+  std::vector<std::string> later_names;
+  std::vector<int64_t> change_at_us;
 };
 
-Scenario BuildScenario(const VehicleSimOptions& o) {
+// Takes every --world FILE / --world=FILE out of the arguments (the flag may repeat).
+std::vector<std::string> TakeWorldFlags(std::vector<std::string>* args) {
+  std::vector<std::string> values, rest;
+  for (size_t i = 0; i < args->size(); ++i) {
+    const std::string& a = (*args)[i];
+    if (a == "--world") {
+      if (i + 1 >= args->size()) throw UsageError("--world needs a file");
+      values.push_back((*args)[++i]);
+    } else if (a.rfind("--world=", 0) == 0) {
+      values.push_back(a.substr(8));
+    } else {
+      rest.push_back(a);
+    }
+  }
+  *args = std::move(rest);
+  return values;
+}
+
+// --world-change-at: one time per world after the first, > 0 and strictly increasing.
+std::vector<int64_t> ParseChangeTimes(const std::string& text, size_t world_count) {
+  if (world_count <= 1) {
+    if (!text.empty()) throw UsageError("--world-change-at needs more than one --world");
+    return {};
+  }
+  if (text.empty())
+    throw UsageError(std::to_string(world_count) + " --world files need --world-change-at with " +
+                     std::to_string(world_count - 1) + " time(s)");
+  const std::vector<double> t = ParseNumberList(text, "--world-change-at", 0);
+  if (t.size() != world_count - 1)
+    throw UsageError("--world-change-at: '" + text + "' has " + std::to_string(t.size()) + " time(s), expected " +
+                     std::to_string(world_count - 1) + " (one per --world after the first)");
+  std::vector<int64_t> us;
+  for (size_t i = 0; i < t.size(); ++i) {
+    if (!std::isfinite(t[i]) || t[i] <= 0.0 || t[i] > 1e7)
+      throw UsageError("--world-change-at: '" + text + "': times must be in (0, 1e7] s");
+    if (i > 0 && t[i] <= t[i - 1]) throw UsageError("--world-change-at: '" + text + "': times must increase");
+    us.push_back(std::llround(t[i] * 1e6));
+  }
+  return us;
+}
+
+Scenario BuildScenario(const VehicleSimOptions& o, const std::vector<std::string>& world_files) {
   Scenario sc;
   std::optional<Pose2> first_station;
-  if (!o.world.empty()) {
-    sc.world = World::Load(o.world).Segments();
+  sc.change_at_us = ParseChangeTimes(o.world_change_at, world_files.size());
+  if (!world_files.empty()) {
+    sc.world = World::Load(world_files.front()).Segments();
+    if (sc.world.empty()) throw InputError(world_files.front() + ": the world has no segments");
     sc.map = sc.world;
-    sc.name = o.world;
+    sc.name = world_files.front();
+    for (size_t k = 1; k < world_files.size(); ++k) {
+      sc.later_worlds.push_back(World::Load(world_files[k]).Segments());
+      if (sc.later_worlds.back().empty()) throw InputError(world_files[k] + ": the world has no segments");
+      sc.later_names.push_back(world_files[k]);
+    }
   } else if (o.generate == "mine") {
     MineOptions m;
     m.pillar_rows = o.pillar_rows;
@@ -185,11 +258,15 @@ int Main(int argc, char** argv) {
   NodeRuntime runtime("vehicle_sim", schema);
   VehicleSimOptions o;
   Declare(schema, o);
-  if (schema.Parse(argc, argv) == ParseOutcome::kExit) return 0;
+  std::vector<std::string> args(argv + 1, argv + argc);
+  std::vector<std::string> world_files = TakeWorldFlags(&args);
+  if (schema.Parse(args) == ParseOutcome::kExit) return 0;
+  // Flags beat a config file's `world =` line, as for every other option.
+  if (world_files.empty() && !o.world.empty()) world_files.push_back(o.world);
   if (std::string why = ValidateSkidSteerOptions(o.vehicle); !why.empty()) throw UsageError(why);
   if (std::string why = ValidateOdometryErrorOptions(o.odometry); !why.empty()) throw UsageError(why);
 
-  const Scenario sc = BuildScenario(o);
+  const Scenario sc = BuildScenario(o, world_files);
   World world(sc.world);
   if (!o.world_out.empty()) world.Save(o.world_out);
   if (!o.map_out.empty()) World(sc.map).Save(o.map_out);
@@ -208,16 +285,46 @@ int Main(int argc, char** argv) {
   });
 
   // The world first, so a ladar starting with us has it before the first truth sample.
-  runtime.AddTimer(o.map_period, [&](int64_t now) {
+  std::string world_name = sc.name;
+  int64_t map_version = 0;  // LINE_MAP's version with --line-map each: +1 per change
+  const auto publish_world = [&](int64_t now) {
     Publish(bus, o.world_channel,
-            SegmentsToLcm(world.Segments(), now, static_cast<int64_t>(world.version()), sc.name));
-    Publish(bus, o.map_channel, SegmentsToLcm(sc.map, now, 0, sc.name + " (surveyed map)"));
+            SegmentsToLcm(world.Segments(), now, static_cast<int64_t>(world.version()), world_name));
+    if (o.line_map == "each")
+      Publish(bus, o.map_channel, SegmentsToLcm(world.Segments(), now, map_version, world_name));
+    else
+      Publish(bus, o.map_channel, SegmentsToLcm(sc.map, now, 0, sc.name + " (surveyed map)"));
+  };
+
+  // The changing world: a change is applied by the first timer (world or motion) that
+  // fires at or after its time, and published at once. True if it changed.
+  std::optional<int64_t> first_tick;
+  size_t next_change = 0;
+  const auto change_world = [&](int64_t now) {
+    if (!first_tick) first_tick = now;
+    bool changed = false;
+    while (next_change < sc.change_at_us.size() && now - *first_tick >= sc.change_at_us[next_change]) {
+      world.ReplaceSegments(world.Ids(), sc.later_worlds[next_change]);
+      world_name = sc.later_names[next_change];
+      ++map_version;
+      ++next_change;
+      changed = true;
+    }
+    if (!changed) return false;
+    MINENAV_LOG(kInfo) << "world changed at " << static_cast<double>(now - *first_tick) * 1e-6 << " s to "
+                       << world_name << ": " << world.size() << " segments, version " << world.version();
+    publish_world(now);
+    return true;
+  };
+  runtime.AddTimer(o.map_period, [&](int64_t now) {
+    if (!change_world(now)) publish_world(now);
   });
 
   std::optional<int64_t> last_tick;
   int64_t seq = 0;
   bool was_stale = true;
   runtime.AddTimer(1.0 / o.rate, [&](int64_t now) {
+    change_world(now);
     if (last_tick) {
       // Clock time since the last tick, capped so a suspended process does not jump.
       const double dt = std::clamp(static_cast<double>(now - *last_tick) * 1e-6, 0.0, 1.0);
