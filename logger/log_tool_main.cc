@@ -1,5 +1,5 @@
 // log_tool: make, inspect, export and draw LCM logs of MINENAV runs (logger/README.md).
-//   log_tool survey | generate | info | export | render | record  [--help]
+//   log_tool survey | generate | info | export | render | record | import-carmen | relations  [--help]
 
 #include <cstdio>
 #include <exception>
@@ -26,6 +26,9 @@ constexpr const char* kOverview =
     "  export    poses of a channel to a poses CSV; scans to a scans CSV\n"
     "  render    an SVG of world, map, scans at their poses and trajectories\n"
     "  record    record the bus into a log without dropping bursts (record.sh --engine log_tool)\n"
+    "  import-carmen  a CARMEN log (.clf[.gz|.bz2]: Intel, fr079, MIT CSAIL, ...) into an LCM log\n"
+    "            with LADAR_SCAN and ODOMETRY\n"
+    "  relations score robot poses against a relations file (Kuemmerle 2009, metricEvaluator)\n"
     "\n"
     "Exit codes: 0 ok, 2 bad flags or input (one line on stderr, no output file written),\n"
     "3 failure while running.\n";
@@ -52,6 +55,8 @@ int main(int argc, char** argv) {
     if (sub == "export") return minenav::RunExportCommand(args);
     if (sub == "render") return minenav::RunRenderCommand(args);
     if (sub == "record") return minenav::RunRecordCommand(args);
+    if (sub == "import-carmen") return minenav::RunImportCarmenCommand(args);
+    if (sub == "relations") return minenav::RunRelationsCommand(args);
     std::fprintf(stderr, "log_tool: error: unknown subcommand '%s' (see log_tool --help)\n", sub.c_str());
     return minenav::kExitUsage;
   } catch (const minenav::UsageError& e) {
