@@ -57,16 +57,16 @@ int RunImportCarmenCommand(const std::vector<std::string>& raw_args) {
   auto seconds = [&] {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   };
-  std::fprintf(stderr, "log_tool import-carmen: reading %s\n", in.c_str());
+  // Progress starts once the input is known good, so a bad input gives one line only.
   const CarmenLog log = ReadCarmenLog(in, read);
   const CarmenLogStats& st = log.stats;
+  if (log.scans.empty()) throw InputError(in + ": no FLASER or ROBOTLASER1 lines");
   std::fprintf(stderr,
                "log_tool import-carmen: %lld lines: %lld FLASER, %lld ROBOTLASER1, %lld ODOM, %lld PARAM, "
-               "%lld other (%.1f s)\n",
+               "%lld other, read in %.1f s\n",
                static_cast<long long>(st.lines), static_cast<long long>(st.flaser_lines),
                static_cast<long long>(st.robotlaser1_lines), static_cast<long long>(st.odom_lines),
                static_cast<long long>(st.param_lines), static_cast<long long>(st.ignored_lines), seconds());
-  if (log.scans.empty()) throw InputError(in + ": no FLASER or ROBOTLASER1 lines");
 
   const bool laser_odometry = scan_odometry == "always" || (scan_odometry == "auto" && log.odometry.empty());
   std::vector<OdometryReading> odometry = log.odometry;

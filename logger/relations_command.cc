@@ -160,11 +160,10 @@ int RunRelationsCommand(const std::vector<std::string>& args) {
   for (StampedPose& p : poses) p.utime += shift_us;
   std::vector<StampedPose> odometry;
   if (!odometry_path.empty()) odometry = LoadPoses(odometry_path, odometry_channel, true);
-  std::fprintf(stderr, "log_tool relations: %zu relations, %zu poses, %zu odometry readings\n", relations.size(),
-               poses.size(), odometry.size());
-
   const RelationScore score = ScoreRelations(relations, poses, odometry, options);
   if (!score.ok) throw InputError("nothing scored: " + score.reason);
+  std::fprintf(stderr, "log_tool relations: %zu relations, %zu poses, %zu odometry readings\n", relations.size(),
+               poses.size(), odometry.size());
   std::fputs(FormatScore(score).c_str(), stdout);
   if (!json_out.empty())
     WriteFileAtomically(json_out, ScoreToJson(score, relations_path, poses_path, odometry_path, options).dump(2) + "\n");
