@@ -1,9 +1,10 @@
 # The mapping session (the policy batch and live share) and checkpoints: no LCM.
 minenav_algorithm_library(minenav_mapping_session
-  ${CMAKE_CURRENT_LIST_DIR}/mapping_session.cc)
+  ${CMAKE_CURRENT_LIST_DIR}/mapping_session.cc
+  ${CMAKE_CURRENT_LIST_DIR}/map_checkpoint.cc)
 target_link_libraries(minenav_mapping_session PUBLIC minenav_mapper)
 minenav_test(NAME mapping_session_test NO_LCM
-  SOURCES ${CMAKE_CURRENT_LIST_DIR}/mapping_session_test.cc
+  SOURCES ${CMAKE_CURRENT_LIST_DIR}/mapping_session_test.cc ${CMAKE_CURRENT_LIST_DIR}/map_checkpoint_test.cc
   LIBS minenav_mapping_session)
 
 # The contour_mapper process (batch over logs for now).

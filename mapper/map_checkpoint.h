@@ -1,0 +1,39 @@
+#pragma once
+// Checkpoints of a mapping run (issue 5: "checkpoints its whole state ... so that a restart
+// resumes with nothing lost"): every inserted scan with its partial scans (vehicle frame),
+// pose and fixed flag; every contour with its id and the map's next id; the session's
+// odometry anchor, counters and pose rows. Thesis 4.1.2: the scans are kept because contour
+// fitting and concurrent refinement (4.5, 4.7) re-use all of them.
+//
+// Format (little-endian, doubles as their IEEE bits so a round trip is bit-exact):
+//   8 bytes magic "MNCLUECK", u32 version (1), u64 payload size, payload, u64 FNV-1a hash
+//   of the payload. Loading validates the magic, version, sizes, hash and every value
+//   (finite numbers, contour sizes, unique ids below next_id, indices in range) and throws
+//   InputError with one line naming the file and what is wrong. Saving is atomic
+//   (WriteFileAtomically): a crash mid-write leaves the previous checkpoint.
+
+#include <string>
+#include <vector>
+
+#include "mapper/mapping_session.h"
+
+namespace minenav::mapper {
+
+struct MapperCheckpoint {
+  std::vector<Contour> contours;  // ids kept
+  int next_contour_id = 0;
+  std::vector<MappedScan> scans;
+  MappingSessionState session;
+};
+
+MapperCheckpoint CheckpointOf(const MappingSession& session);
+std::string EncodeCheckpoint(const MapperCheckpoint& checkpoint);
+// Throws InputError naming `source_name`.
+MapperCheckpoint DecodeCheckpoint(const std::string& bytes, const std::string& source_name);
+
+void SaveCheckpoint(const std::string& path, const MappingSession& session);
+MapperCheckpoint LoadCheckpoint(const std::string& path);
+// A session resumed from a checkpoint, with the given options (grid cell size included).
+MappingSession RestoreSession(const MappingSessionOptions& options, MapperCheckpoint checkpoint);
+
+}  // namespace minenav::mapper
