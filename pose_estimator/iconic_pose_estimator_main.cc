@@ -32,6 +32,7 @@
 #include "common/node/bus.h"
 #include "common/node/conversions.h"
 #include "common/node/node_runtime.h"
+#include "common/node/scan_odometry_sync.h"
 #include "common/pose_estimate.h"
 #include "minenav/contour_map_t.hpp"
 #include "minenav/heartbeat_t.hpp"
@@ -185,8 +186,7 @@ int Main(int argc, char** argv) {
     });
   }
 
-  std::deque<OdometryReading> odometry;
-  std::deque<LadarScan> pending;
+  ScanOdometrySync sync({.max_odometry_gap_us = max_gap_us});
   std::vector<StampedPose> poses;
   std::optional<std::pair<Pose2, Pose2>> last;  // (estimate, odometry) of the last converged scan
   std::vector<LadarScan> all_scans;             // simultaneous mode
@@ -199,18 +199,17 @@ int Main(int argc, char** argv) {
     Publish(bus, p.pose_channel, ToLcm(e));
   };
 
-  auto process = [&](const LadarScan& scan, bool at_shutdown) -> bool {
-    const bool have_later = !odometry.empty() && odometry.back().utime >= scan.utime;
-    if (!have_later && !at_shutdown) return false;  // wait for odometry
-    const std::optional<Pose2> odo = PoseAtTime(odometry, scan.utime, max_gap_us);
+  auto process = [&](const SyncedScan& synced) {
+    const LadarScan& scan = synced.scan;
+    const std::optional<Pose2>& odo = synced.odometry;
     if (!odo) {
       ++skipped;
       MINENAV_LOG(kWarn) << "scan " << scan.scan_id << " at " << scan.utime << ": no odometry within "
                          << p.max_odometry_gap << " s; skipped";
       runtime.SetStatus(heartbeat_t::WARN, "no odometry for a scan");
-      return true;
+      return;
     }
-    const bool exact = HasReadingAt(odometry, scan.utime);
+    const bool exact = synced.exact;
     Pose2 initial = *odo;
     if (last && (p.initial == "chained" || (p.initial == "auto" && !(exact && batch))))
       initial = last->first * Between(last->second, *odo);
@@ -218,7 +217,7 @@ int Main(int argc, char** argv) {
       all_scans.push_back(scan);
       all_initial.push_back(initial);
       last = std::make_pair(initial, *odo);
-      return true;
+      return;
     }
     const double t0 = ThreadCpuSeconds();
     const IconicMatchResult r = estimator->AddScan(scan, initial);
@@ -234,29 +233,20 @@ int Main(int argc, char** argv) {
       runtime.SetStatus(heartbeat_t::WARN, "last scan: " + r.status);
     }
     poses.push_back({scan.utime, r.converged ? r.pose : initial});
-    return true;
   };
   auto drain = [&](bool at_shutdown) {
-    while (!pending.empty() && process(pending.front(), at_shutdown)) pending.pop_front();
+    for (const SyncedScan& s : sync.TakeReady(at_shutdown)) process(s);
   };
 
   Subscribe<odometry_t>(bus, p.odometry_channel, [&](const odometry_t& m) {
-    const OdometryReading o = FromLcm(m);
-    if (!odometry.empty() && o.utime < odometry.back().utime) {
-      MINENAV_LOG(kWarn) << "ODOMETRY time went back: history cleared";
-      odometry.clear();
-    }
-    odometry.push_back(o);
-    while (odometry.size() > 2 && odometry.front().utime < o.utime - 60'000'000) odometry.pop_front();
+    if (!sync.AddOdometry(FromLcm(m))) MINENAV_LOG(kWarn) << "ODOMETRY time went back: history cleared";
     drain(false);
   });
   Subscribe<ladar_scan_t>(bus, p.scan_channel, [&](const ladar_scan_t& m) {
     LadarScan scan = FromLcm(m);
     if (const std::string why = ValidateScan(scan); !why.empty()) throw InputError("invalid scan: " + why);
-    pending.push_back(std::move(scan));
-    if (pending.size() > 100) {
+    if (!sync.AddScan(std::move(scan))) {
       MINENAV_LOG(kWarn) << "100 scans waiting for odometry: dropping the oldest";
-      pending.pop_front();
       ++skipped;
     }
     drain(false);
