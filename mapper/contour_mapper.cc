@@ -13,6 +13,7 @@ std::string ValidateOptions(const ContourMapperOptions& o) {
   if (std::string why = ValidateOptions(o.preprocessing); !why.empty()) return "preprocessing: " + why;
   if (std::string why = ValidateOptions(o.pose); !why.empty()) return "pose: " + why;
   if (std::string why = ValidateOptions(o.expansion); !why.empty()) return "expansion: " + why;
+  if (std::string why = ValidateOptions(o.disappearance); !why.empty()) return "disappearance: " + why;
   if (std::string why = ValidateOptions(o.fitting); !why.empty()) return "fitting: " + why;
   if (std::string why = ValidateOptions(o.refinement); !why.empty()) return "refinement: " + why;
   std::ostringstream why;
@@ -79,6 +80,12 @@ InsertResult ContourMapper::InsertPreprocessed(PreprocessedScan scan, const Pose
       out.reason = why.str();
       return out;
     }
+    // What the scan sees through goes first (4.8.2): a wall that went is then no longer
+    // there for the expansion to splice into, and its ends are free to be reconnected.
+    if (options_.disappearance.enabled) {
+      out.disappearance = RemoveDisappeared(scan, out.pose, map_, options_.disappearance);
+      for (const int id : out.disappearance.changed) to_fit.insert(id);
+    }
     // Contours the scan overlaps get refitted with its data.
     const ScanCorrespondence corr = CorrespondScan(scan, out.pose, map_, options_.fitting.correspondence_threshold);
     for (const ErrorPiece& p : corr.pieces) to_fit.insert(p.segment.contour);
@@ -111,7 +118,8 @@ InsertResult ContourMapper::InsertPreprocessed(PreprocessedScan scan, const Pose
   std::ostringstream summary;
   summary << (first ? "first scan (fixed)" : out.estimation.reason) << "; created " << out.expansion.created.size()
           << ", extended " << out.expansion.extended.size() << ", connected " << out.expansion.connected.size()
-          << " contours";
+          << ", spliced " << out.expansion.spliced.size() << " contours";
+  if (out.disappearance.removed_length > 0.0) summary << "; removed " << out.disappearance.removed_length << " m seen through";
   out.reason = summary.str();
   return out;
 }

@@ -5,7 +5,8 @@
 //   2. estimate its pose against the contours from the initial pose given (4.3);
 //   3. refuse it if it does not fit (too few points, too little overlap, a correction larger
 //      than the initial error can be, a poor final fit): the map is left untouched;
-//   4. expand the map where the scan sees new walls (4.4);
+//   4. remove what the scan sees through (4.8.2, disappearance.enabled), then expand the
+//      map where the scan sees new walls, splicing objects into walls (4.4, 4.8.1);
 //   5. fit the contours the scan created or overlapped (4.5);
 //   6. optionally refine every pose and contour concurrently (4.7).
 // The first scan anchors the frame: it is kept at its given pose and never moved.
@@ -21,6 +22,7 @@
 #include "mapper/concurrent_refinement.h"
 #include "mapper/contour_fitting.h"
 #include "mapper/contour_map.h"
+#include "mapper/map_disappearance.h"
 #include "mapper/map_expansion.h"
 #include "mapper/mapped_scan.h"
 #include "mapper/pose_estimation.h"
@@ -32,6 +34,7 @@ struct ContourMapperOptions {
   ScanPreprocessingOptions preprocessing;
   PoseEstimationOptions pose;
   MapExpansionOptions expansion;
+  MapDisappearanceOptions disappearance;
   ContourFittingOptions fitting;
   ConcurrentRefinementOptions refinement;
   // m; cell size of the contour map's segment grid.
@@ -67,6 +70,7 @@ struct InsertResult {
   int scan_index = -1;  // index in scans() when accepted
   Pose2 pose;           // the estimate (the initial pose when refused before estimation)
   PoseEstimationResult estimation;
+  MapDisappearanceResult disappearance;
   MapExpansionResult expansion;
   ContourFittingResult fitting;
 };

@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "mapper/correspondence.h"
+#include "mapper/map_appearance.h"
 
 namespace minenav::mapper {
 
@@ -17,6 +18,10 @@ std::string ValidateOptions(const MapExpansionOptions& o) {
     why << "min_new_points must be >= 2, got " << o.min_new_points;
   else if (!(o.min_new_length >= 0.0) || !(o.end_snap_distance >= 0.0))
     why << "min_new_length and end_snap_distance must be >= 0 m";
+  else if (!(o.min_splice_length >= 0.0))
+    why << "min_splice_length must be >= 0 m, got " << o.min_splice_length;
+  else if (!(o.max_bypass_ratio > 0.0))
+    why << "max_bypass_ratio must be > 0, got " << o.max_bypass_ratio;
   return why.str();
 }
 
@@ -24,24 +29,11 @@ std::vector<int> MapExpansionResult::Touched() const {
   std::vector<int> all = created;
   all.insert(all.end(), extended.begin(), extended.end());
   all.insert(all.end(), connected.begin(), connected.end());
+  all.insert(all.end(), spliced.begin(), spliced.end());
   std::sort(all.begin(), all.end());
   all.erase(std::unique(all.begin(), all.end()), all.end());
   return all;
 }
-
-namespace {
-
-// Does the matched point next to a run sit at the end (or start) of an open contour?
-int OpenEndOf(const ContourMap& map, const PointMatch& m, const Eigen::Vector2d& p, bool want_end, double snap) {
-  if (!m.matched()) return -1;
-  const Contour& c = map.Get(m.segment.contour);
-  if (c.closed) return -1;
-  const bool on_end_segment = want_end ? m.segment.segment == c.NumSegments() - 1 : m.segment.segment == 0;
-  const Eigen::Vector2d& v = want_end ? c.points.back() : c.points.front();
-  return on_end_segment || (v - p).norm() <= snap ? c.id : -1;
-}
-
-}  // namespace
 
 MapExpansionResult ExpandMap(const PreprocessedScan& scan, const Pose2& pose, ContourMap& map,
                              const MapExpansionOptions& o) {
@@ -52,8 +44,9 @@ MapExpansionResult ExpandMap(const PreprocessedScan& scan, const Pose2& pose, Co
     const int n = static_cast<int>(world.size());
     std::vector<bool> processed(static_cast<size_t>(n), false);
     for (int pass = 0; pass < n; ++pass) {
+      // Each edit changes the map: match again, then take the first unmatched, unprocessed
+      // run that is long enough.
       const std::vector<PointMatch> m = MatchPoints(world, sensor, map, o.correspondence_threshold);
-      // The first unmatched, unprocessed run that is long enough.
       int a = -1, b = -1;
       for (int k = 0; k < n;) {
         if (m[static_cast<size_t>(k)].matched() || processed[static_cast<size_t>(k)]) {
@@ -73,40 +66,22 @@ MapExpansionResult ExpandMap(const PreprocessedScan& scan, const Pose2& pose, Co
       if (a < 0) break;
       for (int k = a; k <= b; ++k) processed[static_cast<size_t>(k)] = true;
 
-      std::vector<Eigen::Vector2d> run(world.begin() + a, world.begin() + b + 1);
-      const int end_of = a > 0 ? OpenEndOf(map, m[static_cast<size_t>(a - 1)], world[static_cast<size_t>(a - 1)],
-                                           true, o.end_snap_distance)
-                               : -1;
-      const int start_of = b + 1 < n ? OpenEndOf(map, m[static_cast<size_t>(b + 1)],
-                                                 world[static_cast<size_t>(b + 1)], false, o.end_snap_distance)
-                                     : -1;
-      const double len = o.nominal_segment_length;
-      bool done = false;
-      if (end_of >= 0 && start_of >= 0) {
-        std::vector<Eigen::Vector2d> path = run;
-        path.insert(path.begin(), map.Get(end_of).points.back());
-        path.push_back(map.Get(start_of).points.front());
-        const std::vector<Eigen::Vector2d> v = PickVertices(path, len);
-        const std::vector<Eigen::Vector2d> bridge(v.begin() + 1, v.end() - 1);
-        if (end_of != start_of || map.Get(end_of).NumPoints() + static_cast<int>(bridge.size()) >= 3) {
-          out.connected.push_back(map.Join(end_of, start_of, bridge));
-          done = true;
-        }
-      }
-      if (done) continue;
-      if (end_of >= 0) {
-        run.insert(run.begin(), map.Get(end_of).points.back());
-        std::vector<Eigen::Vector2d> v = PickVertices(run, len);
-        map.ExtendEnd(end_of, std::vector<Eigen::Vector2d>(v.begin() + 1, v.end()));
-        out.extended.push_back(end_of);
-      } else if (start_of >= 0) {
-        run.push_back(map.Get(start_of).points.front());
-        std::vector<Eigen::Vector2d> v = PickVertices(run, len);
-        map.ExtendStart(start_of, std::vector<Eigen::Vector2d>(v.begin(), v.end() - 1));
-        out.extended.push_back(start_of);
-      } else {
-        out.created.push_back(map.Create(PickVertices(run, len)));
-      }
+      const RunAnchor left = a > 0 ? LeftAnchor(map, m[static_cast<size_t>(a - 1)], world[static_cast<size_t>(a - 1)],
+                                                o.end_snap_distance)
+                                   : RunAnchor{};
+      const RunAnchor right = b + 1 < n ? RightAnchor(map, m[static_cast<size_t>(b + 1)],
+                                                      world[static_cast<size_t>(b + 1)], o.end_snap_distance)
+                                        : RunAnchor{};
+      const std::vector<Eigen::Vector2d> run(world.begin() + a, world.begin() + b + 1);
+      const AppearanceEdit edit = ApplyAppearance(map, run, left, right, o);
+      ++out.cases[static_cast<size_t>(edit.case_number)];
+      out.spliced.insert(out.spliced.end(), edit.spliced.begin(), edit.spliced.end());
+      if (edit.connected)
+        out.connected.push_back(edit.contour);
+      else if (edit.extended)
+        out.extended.push_back(edit.contour);
+      else if (edit.contour >= 0)
+        out.created.push_back(edit.contour);
     }
   }
   // Joins remove contours: report only ids that still exist.
@@ -116,6 +91,7 @@ MapExpansionResult ExpandMap(const PreprocessedScan& scan, const Pose2& pose, Co
   prune(out.created);
   prune(out.extended);
   prune(out.connected);
+  prune(out.spliced);
   return out;
 }
 

@@ -8,10 +8,12 @@
 //   - a new contour otherwise (4.4.1): the first and last points of the run and scan
 //     points in between at least the nominal segment length apart (a rough fit that
 //     contour fitting then improves).
-// Runs that leave a contour at an interior segment are the dynamic-world cases of 4.8.1
-// (splice, join); in a static world they come from corners and noise, and the short ones
-// are ignored. Longer ones become new contours here; issue 6 replaces that with splicing.
+// Runs that leave or reach a contour at an interior segment are the dynamic-world cases of
+// 4.8.1 (splice, join): map_appearance.h classifies every run into the eight cases and
+// applies the edit; with splice_interior off, interior neighbours count as none and the
+// walk is the static expansion of 4.4 (such runs become new contours).
 
+#include <array>
 #include <vector>
 
 #include "common/pose2.h"
@@ -32,6 +34,14 @@ struct MapExpansionOptions {
   // m; a run continues a contour's end (start) when the matched point next to it lies
   // this close to that end (start) vertex, or matched its last (first) segment.
   double end_snap_distance = 1.0;
+  // Dynamic world (4.8.1): runs beside a match on a contour's interior segment are spliced
+  // into that contour (an object placed against a wall). Off: they become new contours.
+  bool splice_interior = true;
+  // m; an interior anchor is used only for runs at least this long (along the run).
+  double min_splice_length = 0.5;
+  // A case-4 splice into one contour may bypass (leave as occluded) at most this many times
+  // the length of the run from cut to cut; more means the run is not an object on the wall.
+  double max_bypass_ratio = 1.5;
 };
 
 std::string ValidateOptions(const MapExpansionOptions& options);
@@ -40,6 +50,8 @@ struct MapExpansionResult {
   std::vector<int> created;    // ids of new contours
   std::vector<int> extended;   // ids of contours extended at either end
   std::vector<int> connected;  // ids of contours that absorbed a connection (or closed)
+  std::vector<int> spliced;    // ids of contours that a splice cut (4.8.1), remainders too
+  std::array<int, 9> cases{};  // runs handled per case of map_appearance.h (0 = created)
   std::vector<int> Touched() const;  // all of the above that still exist, sorted, unique
 };
 
