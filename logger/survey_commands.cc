@@ -1,6 +1,7 @@
 // log_tool survey and log_tool generate: commands that make inputs and logs from the
 // simulator (sim/, sensor_driver/) without a bus.
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -11,6 +12,7 @@
 #include "common/node/event_log.h"
 #include "logger/log_tool_commands.h"
 #include "logger/survey.h"
+#include "sim/changing_world.h"
 #include "sim/mine_generator.h"
 #include "sim/mockup_generator.h"
 
@@ -240,6 +242,37 @@ int RunSurveyCommand(const std::vector<std::string>& raw_args) {
   return 0;
 }
 
+namespace {
+
+// A changing-world scenario: world k goes to world_out with '{}' replaced by k.
+int WriteChangingWorld(const ChangingWorldScenario& sc, const std::string& world_out, const std::string& stations_out,
+                       const std::string& map_out) {
+  if (!map_out.empty()) throw UsageError("--map-out is only for --kind mockup");
+  const size_t brace = world_out.find("{}");
+  if (sc.worlds.size() > 1 && brace == std::string::npos)
+    throw UsageError("--world-out: '" + world_out + "' needs '{}' for the world index (" + sc.name + " has " +
+                     std::to_string(sc.worlds.size()) + " worlds), e.g. " + sc.name + "_{}.json");
+  std::vector<std::string> paths;
+  for (size_t k = 0; k < sc.worlds.size(); ++k) {
+    std::string path = world_out;
+    if (brace != std::string::npos) path.replace(brace, 2, std::to_string(k));
+    RequireOutputPath(path, "--world-out");
+    paths.push_back(path);
+  }
+  for (size_t k = 0; k < sc.worlds.size(); ++k) SaveSegmentsJson(paths[k], sc.worlds[k]);
+  SaveStationsCsv(stations_out, sc.stations);
+  std::string survey = "log_tool survey";
+  for (const auto& p : paths) survey += " --world " + p;
+  std::fprintf(stderr,
+               "log_tool generate: %s: %zu worlds -> %s; %zu stations -> %s\n"
+               "survey it with:\n  %s --stations %s --out %s.lcm\n",
+               sc.name.c_str(), sc.worlds.size(), world_out.c_str(), sc.stations.size(), stations_out.c_str(),
+               survey.c_str(), stations_out.c_str(), sc.name.c_str());
+  return 0;
+}
+
+}  // namespace
+
 int RunGenerateCommand(const std::vector<std::string>& args) {
   std::string kind = "mine", world_out, stations_out, map_out;
   int64_t seed = 1;
@@ -248,13 +281,21 @@ int RunGenerateCommand(const std::vector<std::string>& args) {
   ResearchMineOptions research;
   double heading_variation = 0.6;
   int loop_row = 0, loop_col = 0;
-  ConfigSchema schema("log_tool generate",
-                      "Writes a generated world (segments JSON) and survey stations (CSV) for log_tool survey:\n"
-                      "  mine      room-and-pillar mine of thesis 5.2.1, serpentine survey (default 42 stations)\n"
-                      "  research  research-mine style (5.3): narrow entries, irregular pillars, cribs (33)\n"
-                      "  mockup    indoor mockup corridor of 2.2 with clutter not in the map, Table 1's 16 stations\n"
-                      "  loop      the mine, with stations around one pillar closing a loop (24)");
-  schema.AddString("kind", &kind, "what to generate", {"mine", "research", "mockup", "loop"});
+  std::string summary =
+      "Writes a generated world (segments JSON) and survey stations (CSV) for log_tool survey:\n"
+      "  mine      room-and-pillar mine of thesis 5.2.1, serpentine survey (default 42 stations)\n"
+      "  research  research-mine style (5.3): narrow entries, irregular pillars, cribs (33)\n"
+      "  mockup    indoor mockup corridor of 2.2 with clutter not in the map, Table 1's 16 stations\n"
+      "  loop      the mine, with stations around one pillar closing a loop (24)\n"
+      "A changing world (thesis 4.8, sim/changing_world.h): several worlds, one file each (--world-out\n"
+      "with '{}' standing for the world index), and stations with a 'world' column:";
+  std::vector<std::string> kinds = {"mine", "research", "mockup", "loop"};
+  for (const ChangingWorldScenario& sc : AllChangingWorldScenarios()) {
+    summary += "\n  " + sc.name + std::string(sc.name.size() < 17 ? 17 - sc.name.size() : 1, ' ') + sc.description;
+    kinds.push_back(sc.name);
+  }
+  ConfigSchema schema("log_tool generate", summary);
+  schema.AddString("kind", &kind, "what to generate", kinds);
   schema.AddInt64("seed", &seed, "random seed", 0);
   schema.AddString("world_out", &world_out, "world segments JSON to write (required)");
   schema.AddString("stations_out", &stations_out, "stations CSV to write (required)");
@@ -270,13 +311,19 @@ int RunGenerateCommand(const std::vector<std::string>& args) {
   schema.AddDouble("heading_variation", &heading_variation, "rad", "stations: random heading offset bound", 0.0);
   schema.AddInt("loop_row", &loop_row, "loop: pillar row to go around", 0);
   schema.AddInt("loop_col", &loop_col, "loop: pillar column to go around", 0);
-  schema.AddHelpEpilog("Example: log_tool generate --kind mine --seed 3 --world-out mine.json --stations-out st.csv\n");
+  schema.AddHelpEpilog(
+      "Examples:\n"
+      "  log_tool generate --kind mine --seed 3 --world-out mine.json --stations-out st.csv\n"
+      "  log_tool generate --kind doors_open --world-out doors_{}.json --stations-out st.csv\n"
+      "      (writes doors_0.json, doors_1.json and prints the log_tool survey command for them)\n");
   if (schema.Parse(args) == ParseOutcome::kExit) return 0;
   RequireOutputPath(world_out, "--world-out");
   RequireOutputPath(stations_out, "--stations-out");
   if (!map_out.empty() && kind != "mockup") throw UsageError("--map-out is only for --kind mockup");
   mine.seed = static_cast<uint64_t>(seed);
   research.seed = static_cast<uint64_t>(seed);
+  if (std::find(kinds.begin(), kinds.begin() + 4, kind) == kinds.begin() + 4)
+    return WriteChangingWorld(ChangingWorldScenarioByName(kind), world_out, stations_out, map_out);
 
   std::vector<Segment> world, map;
   std::vector<Station> st;

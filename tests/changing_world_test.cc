@@ -24,6 +24,7 @@
 #include "minenav/line_map_t.hpp"
 #include "minenav/odometry_t.hpp"
 #include "minenav/vehicle_truth_t.hpp"
+#include "sim/changing_world.h"
 #include "tests/changing_world_fixtures.h"
 #include "tests/child_process.h"
 #include "tests/log_contents.h"
@@ -109,7 +110,8 @@ TEST(ChangingWorldSurvey, EachStationIsCastInItsWorldAndTheLogRecordsEachActivat
     EXPECT_EQ(sim_world[j].timestamp, scans[k].timestamp);
     EXPECT_EQ(sim_world[j].msg.version, static_cast<int64_t>(j + 1));
     EXPECT_EQ(SegmentsFromLcm(sim_world[j].msg).size(), worlds[static_cast<size_t>(st[k].world)].size());
-    EXPECT_EQ(sim_world[j].msg.name.rfind("world " + std::to_string(st[k].world) + ": ", 0), 0u) << sim_world[j].msg.name;
+    const std::string& name = sim_world[j].msg.name;
+    EXPECT_EQ(name.rfind("world " + std::to_string(st[k].world) + ": ", 0), 0u) << name;
   }
   const auto line_map = ReadChannel<line_map_t>(log, "LINE_MAP");
   ASSERT_EQ(line_map.size(), 1u);
@@ -128,7 +130,8 @@ TEST(ChangingWorldSurvey, AWorldIndexOutOfRangeExitsTwoWithOneLineAndNoOutput) {
   SaveSegmentsJson(b, testing::DoorOpenRoomWithBox());
   std::ofstream(stations) << "x,y,theta,world\n0,0,0,0\n0,0,0,1\n0,0,0,2\n";
   const std::string log = dir / "survey.lcm", truth = dir / "truth.csv";
-  const Result r = RunProcess({MINENAV_LOG_TOOL_BIN, "survey", "--world", a, "--world", b, "--stations", stations, "--out",
+  const Result r = RunProcess({MINENAV_LOG_TOOL_BIN, "survey", "--world", a, "--world", b, "--stations", stations,
+                               "--out",
                         log, "--truth-out", truth},
                        dir / "survey.txt");
   EXPECT_EQ(r.code, 2);
@@ -137,9 +140,58 @@ TEST(ChangingWorldSurvey, AWorldIndexOutOfRangeExitsTwoWithOneLineAndNoOutput) {
   EXPECT_FALSE(fs::exists(log));
   EXPECT_FALSE(fs::exists(truth));
   std::ofstream(stations) << "x,y,theta,world\n0,0,0,-1\n";
-  EXPECT_EQ(RunProcess({MINENAV_LOG_TOOL_BIN, "survey", "--world", a, "--stations", stations, "--out", log}, dir / "o.txt").code,
-            2);
+  EXPECT_EQ(
+      RunProcess({MINENAV_LOG_TOOL_BIN, "survey", "--world", a, "--stations", stations, "--out", log}, dir / "o.txt").code,
+      2);
   EXPECT_FALSE(fs::exists(log));
+}
+
+TEST(ChangingWorldSurvey, GenerateWritesEveryScenarioReadyForTheSurvey) {
+  TempDir dir;
+  for (const std::string& name : ChangingWorldScenarioNames()) {
+    const ChangingWorldScenario sc = ChangingWorldScenarioByName(name);
+    const std::string pattern = dir / (name + "_{}.json"), stations = dir / (name + ".csv");
+    Result r = RunProcess({MINENAV_LOG_TOOL_BIN, "generate", "--kind", name, "--world-out", pattern, "--stations-out",
+                           stations},
+                          dir / "gen.txt");
+    ASSERT_EQ(r.code, 0) << r.output;
+    std::vector<std::string> survey = {MINENAV_LOG_TOOL_BIN, "survey", "--stations", stations, "--points", "256",
+                                       "--quiet", "--out", dir / (name + ".lcm")};
+    for (size_t k = 0; k < sc.worlds.size(); ++k) {
+      const std::string path = dir / (name + "_" + std::to_string(k) + ".json");
+      const std::vector<Segment> world = LoadSegmentsJson(path);
+      ASSERT_EQ(world.size(), sc.worlds[k].size()) << path;
+      for (size_t i = 0; i < world.size(); ++i) {  // the JSON file keeps about 10 digits
+        EXPECT_NEAR((world[i].a - sc.worlds[k][i].a).norm(), 0.0, 1e-7) << path << " segment " << i;
+        EXPECT_NEAR((world[i].b - sc.worlds[k][i].b).norm(), 0.0, 1e-7) << path << " segment " << i;
+      }
+      survey.insert(survey.end(), {"--world", path});
+      EXPECT_NE(r.output.find("--world " + path), std::string::npos) << "prints the survey command: " << r.output;
+    }
+    const std::vector<Station> st = LoadStationsCsv(stations);
+    ASSERT_EQ(st.size(), sc.stations.size());
+    int activations = 0;
+    for (size_t k = 0; k < st.size(); ++k) {
+      EXPECT_EQ(st[k].world, sc.stations[k].world);
+      EXPECT_NEAR(st[k].pose.x, sc.stations[k].pose.x, 1e-9);
+      EXPECT_NEAR(st[k].pose.theta, sc.stations[k].pose.theta, 1e-9);
+      activations += k == 0 || st[k].world != st[k - 1].world ? 1 : 0;
+    }
+    r = RunProcess(survey, dir / "survey.txt");
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_EQ(ReadChannel<line_map_t>(dir / (name + ".lcm"), "SIM_WORLD").size(), static_cast<size_t>(activations))
+        << name;
+    EXPECT_EQ(ReadChannel<ladar_scan_t>(dir / (name + ".lcm"), "LADAR_SCAN").size(), st.size()) << name;
+  }
+  // Several worlds need '{}' in --world-out: exit 2, one line, nothing written.
+  const Result r = RunProcess({MINENAV_LOG_TOOL_BIN, "generate", "--kind", "doors_open", "--world-out",
+                               dir / "w.json", "--stations-out", dir / "s.csv"},
+                              dir / "gen.txt");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.output.find("needs '{}'"), std::string::npos) << r.output;
+  EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+  EXPECT_FALSE(fs::exists(dir / "w.json"));
+  EXPECT_FALSE(fs::exists(dir / "s.csv"));
 }
 
 constexpr int64_t kT0 = 1'700'000'000'000'000;
@@ -194,7 +246,8 @@ TEST(ChangingWorldProcesses, VehicleSimChangesTheWorldOnTimeAndTheLadarCastsTheN
   for (const auto& m : ReadChannel<line_map_t>(sim_log, "LINE_MAP"))
     EXPECT_EQ(SegmentsFromLcm(m.msg).size(), testing::DoorClosedRoom().size());
 
-  std::vector<std::string> ladar = {MINENAV_LADAR_DRIVER_BIN, "--log", sim_log, "--log-out", scan_log, "--points", "1024"};
+  std::vector<std::string> ladar = {MINENAV_LADAR_DRIVER_BIN, "--log",    sim_log, "--log-out",
+                                    scan_log,                 "--points", "1024"};
   ladar.insert(ladar.end(), kIdealLadar.begin(), kIdealLadar.end());
   r = RunProcess(ladar, dir / "ladar.txt");
   ASSERT_EQ(r.code, 0) << r.output;
