@@ -37,7 +37,7 @@ struct MapDisappearanceOptions {
   // Cyclone 4 mrad).
   double beam_divergence = 0.003;
   // m; a segment must lie at least this far in front of the scan points to be seen through.
-  double correspondence_threshold = 0.2;
+  double correspondence_threshold = 0.1;
   // rad; beams meeting a segment more glancingly than this remove nothing from it.
   double min_view_angle = 0.35;
   // m; removed stretches shorter than this (along the contour) are kept.

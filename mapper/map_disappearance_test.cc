@@ -32,7 +32,7 @@ TEST(MapDisappearanceTest, AContourSeenThroughIsRemoved) {
 TEST(MapDisappearanceTest, WhatCorrespondsOrIsHiddenOrGlancingStays) {
   ContourMap map;
   const int on_wall = map.Create(ResamplePolyline({{5, -2}, {5, 2}}, false, 0.5));  // the wall itself
-  const int near_wall = map.Create({{4.85, -2}, {4.85, 2}});  // within the 0.2 m threshold
+  const int near_wall = map.Create({{4.93, -2}, {4.93, 2}});  // within the 0.1 m threshold
   const int behind = map.Create({{7, -2}, {7, 2}});           // behind the wall: occluded, not gone
   // Nearly along the beams: it starts on the beam at bearing 0.5 rad and runs 8 degrees off
   // it, so every beam meets it at 8 degrees or less.
