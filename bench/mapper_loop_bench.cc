@@ -9,7 +9,8 @@
 //      composed with the odometry motion since it; then a final concurrent refinement.
 //
 //   mapper_loop_bench [--seed 1] [--stations 16] [--max_range 15] [--scale_error 0.005]
-//                     [--drift_deg_per_m 0.03] [--rounds 20] [--json_out FILE]
+//                     [--drift_deg_per_m 0.03] [--rounds 20] [--pose_graph true]
+//                     [--point_stride 2] [--json_out FILE]
 
 #include <algorithm>
 #include <chrono>
@@ -64,6 +65,8 @@ int Run(int argc, char** argv) {
   int seed = 1, stations = 16, rounds = 20;
   double max_range = 15.0, scale_error = 0.005, drift_deg_per_m = 0.03;
   std::string json_out;
+  bool pose_graph = true;
+  int point_stride = mapper::LoopClosureOptions{}.point_stride;
   minenav::ConfigSchema schema("mapper_loop_bench", "Loop closure by concurrent refinement around a pillar.");
   schema.AddInt("seed", &seed, "seed of the mine, scans and odometry errors", 0, 1000000);
   schema.AddInt("stations", &stations, "stations around the loop", 4, 200);
@@ -71,6 +74,10 @@ int Run(int argc, char** argv) {
   schema.AddDouble("scale_error", &scale_error, "", "odometry scale error (0.005 = reads 0.5% long)", -0.5, 0.5);
   schema.AddDouble("drift_deg_per_m", &drift_deg_per_m, "deg/m", "odometry heading drift per metre", -10.0, 10.0);
   schema.AddInt("rounds", &rounds, "concurrent refinement rounds at most", 1, 1000);
+  double min_decrease = mapper::ConcurrentRefinementOptions{}.min_relative_decrease;
+  schema.AddDouble("min_decrease", &min_decrease, "", "refinement stops when a round lowers the total error by less than this fraction", 0.0, 1.0);
+  schema.AddBool("pose_graph", &pose_graph, "run the pose-graph step (loop_closure.h) before the rounds");
+  schema.AddInt("point_stride", &point_stride, "every k-th point of a scan in the pairwise registrations", 1, 100);
   schema.AddString("json_out", &json_out, "write the results as JSON to this file ('' = none)");
   if (schema.Parse(argc, argv) == minenav::ParseOutcome::kExit) return 0;
 
@@ -94,6 +101,9 @@ int Run(int argc, char** argv) {
   mapper::ContourMapperOptions options;
   options.preprocessing.max_range = max_range;
   options.refinement.max_rounds = rounds;
+  options.refinement.loop_closure.enabled = pose_graph;
+  options.refinement.min_relative_decrease = min_decrease;
+  options.refinement.loop_closure.point_stride = point_stride;
 
   // A: map at the dead-reckoned poses, then concurrent refinement.
   const std::clock_t a0 = std::clock();
@@ -147,6 +157,7 @@ int Run(int argc, char** argv) {
   Row("B: after concurrent refinement", b_after, b_dev_after);
   std::printf("(A: %d rounds, %s, %.1f s CPU; B: %d refused, %d rounds, %s, %.1f s CPU)\n", a_ref.rounds,
               a_ref.reason.c_str(), a_cpu, refused, b_ref.rounds, b_ref.reason.c_str(), b_cpu);
+  std::printf("A pose graph: %s\nB pose graph: %s\n", a_ref.loop_closure.reason.c_str(), b_ref.loop_closure.reason.c_str());
 
   if (!json_out.empty()) {
     nlohmann::json j;

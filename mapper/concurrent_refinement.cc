@@ -7,6 +7,7 @@ namespace minenav::mapper {
 std::string ValidateOptions(const ConcurrentRefinementOptions& o) {
   if (std::string why = ValidateOptions(o.pose); !why.empty()) return "pose: " + why;
   if (std::string why = ValidateOptions(o.fitting); !why.empty()) return "fitting: " + why;
+  if (std::string why = ValidateOptions(o.loop_closure); !why.empty()) return "loop_closure: " + why;
   std::ostringstream why;
   if (o.max_rounds < 1)
     why << "max_rounds must be >= 1, got " << o.max_rounds;
@@ -27,6 +28,25 @@ ConcurrentRefinementResult RefineConcurrently(std::vector<MappedScan>& scans, Co
                                               const ConcurrentRefinementOptions& o) {
   ConcurrentRefinementResult out;
   double previous = TotalError(scans, map, o.evaluation_threshold);
+  if (o.loop_closure.enabled) {
+    std::vector<Pose2> saved_poses;
+    for (const MappedScan& s : scans) saved_poses.push_back(s.pose);
+    ContourMap saved_map = map;
+    out.loop_closure = CloseLoops(scans, map, o.loop_closure, o.fitting, o.redundant);
+    if (out.loop_closure.applied) {
+      // Registrations can be wrong where scans see little (a corridor without features):
+      // keep the closed loop only if the scans fit the refitted map better than before.
+      const double closed = TotalError(scans, map, o.evaluation_threshold);
+      if (closed > previous) {
+        for (size_t k = 0; k < scans.size(); ++k) scans[k].pose = saved_poses[k];
+        map = std::move(saved_map);
+        out.loop_closure.applied = false;
+        out.loop_closure.reason += "; undone: the total error rose";
+      } else {
+        previous = closed;
+      }
+    }
+  }
   out.total_error.push_back(previous);
   for (int round = 1; round <= o.max_rounds; ++round) {
     std::vector<Pose2> saved_poses;

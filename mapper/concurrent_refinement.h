@@ -5,12 +5,19 @@
 // each other together; where scans see the same walls from both ends of a loop, the loop
 // closes. Callable after every scan or on demand. The first (fixed) scan anchors the frame.
 // A round that raises the total error is undone and ends the refinement.
+//
+// Beyond the thesis: alternating alone passes a loop's closing correction around the loop
+// about one scan per round (the thesis ran 9 scans overnight; a 16-scan loop with 0.5 m of
+// drift was still 0.3 m off after 20 rounds). So refinement first runs a joint step over all
+// poses, a pose graph of scan-to-scan registrations (loop_closure.h), carries the contours
+// along with their scans and refits them; the alternating rounds then polish the result.
 
 #include <string>
 #include <vector>
 
 #include "mapper/contour_fitting.h"
 #include "mapper/contour_map.h"
+#include "mapper/loop_closure.h"
 #include "mapper/mapped_scan.h"
 #include "mapper/pose_estimation.h"
 #include "mapper/redundant_contours.h"
@@ -27,6 +34,9 @@ inline PoseEstimationOptions DefaultRefinementPoseOptions() {
 }
 
 struct ConcurrentRefinementOptions {
+  // The pose-graph step run before the rounds (loop_closure.enabled = false: the thesis's
+  // alternation alone).
+  LoopClosureOptions loop_closure;
   // Pose refinement with the contours fixed.
   PoseEstimationOptions pose = DefaultRefinementPoseOptions();
   ContourFittingOptions fitting;
@@ -52,6 +62,7 @@ struct ConcurrentRefinementResult {
   std::string reason;
   int rounds = 0;                   // rounds kept
   std::vector<double> total_error;  // m^3, before the first round and after each kept round
+  LoopClosureResult loop_closure;   // the pose-graph step (reason "" if disabled)
 };
 
 ConcurrentRefinementResult RefineConcurrently(std::vector<MappedScan>& scans, ContourMap& map,
