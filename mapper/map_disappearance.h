@@ -42,8 +42,10 @@ struct MapDisappearanceOptions {
   double min_view_angle = 0.35;
   // m; removed stretches shorter than this (along the contour) are kept.
   double min_removed_length = 0.3;
-  // m; pieces of a cut contour shorter than this are removed with the rest.
-  double min_piece_length = 0.3;
+  // m; pieces of a cut contour shorter than this are removed with the rest: what remains of
+  // an object seen through all round, whose last bits were seen only glancingly or near its
+  // corners (0.3 m left such bits of a parked machine in the bench).
+  double min_piece_length = 0.6;
 };
 
 std::string ValidateOptions(const MapDisappearanceOptions& options);

@@ -234,7 +234,7 @@ ChangingWorldScenario ParkedEquipmentScenario(const ChangingWorldOptions& o) {
   Append(&parked, Loop(corners));
   sc.worlds = {parked, room};
   sc.stations = {At(4.0, 3.0, 0.0, 0), At(11.0, 2.5, 0.3, 0), At(18.0, 11.0, 3.0, 0), At(9.0, 12.0, -0.2, 0),
-                 At(6.0, 6.5, 0.0, 1), At(11.0, 7.2, 0.3, 1), At(15.0, 7.5, 0.2, 1)};
+                 At(6.0, 6.5, 0.0, 1), At(8.5, 10.0, -0.5, 1), At(15.0, 7.5, 0.2, 1)};
   Judge(&sc, {{"after the machine left", 6}}, o);
   return sc;
 }
