@@ -1,181 +1,460 @@
-// contour_mapper, batch mode (thesis chapter 4): builds a contour map from a log's
-// LADAR_SCAN with ODOMETRY as the initial estimates, the first scan fixed, then runs a
-// final concurrent refinement (4.7) and writes the contour-map JSON, one refined pose per
-// scan (poses CSV) and optionally an SVG.
+// contour_mapper (thesis chapter 4, CLUE) as a process of the fleet.
 //
-// Initial estimate of each scan: the odometry motion since the previous accepted scan
-// (odometry interpolated at each scan's utime) composed onto that scan's refined pose; the
-// first scan is fixed at its odometry pose and defines the map frame. Using the odometry
-// poses directly would carry the first scan's error as a frame offset that grows with
-// distance from it (2 degrees is 0.7 m at 20 m), which the mapper must then undo.
+// Batch (--log IN.lcm --map-out MAP.json [--poses-out POSES.csv] [--svg-out MAP.svg]):
+// reads the log's LADAR_SCAN and ODOMETRY in file order, as fast as it can, maps every
+// scan, runs a final concurrent refinement (4.7) and writes the contour-map JSON, one pose
+// per inserted or tracked scan and a picture. Tools outside the project call exactly this.
 //
-// The live process (subscribing, CONTOUR_MAP publishing, checkpoints) is the next step of
-// issue 5; this binary runs over logs only and says so when --log is missing.
+// Live (no --log): subscribes the same channels, maps each scan as it arrives, publishes a
+// pose_estimate_t on POSE per scan (source "clue"; converged = false and the reason in
+// status for a refused scan) and contour_map_t on CONTOUR_MAP whenever the map changed
+// (zlib-compressed above --compress-above bytes), plus HEARTBEAT.
+//
+// Both modes run the same policy (mapper/mapping_session.h) on the same scans paired with
+// the same odometry (common/node/scan_odometry_sync.h), so replaying a log through the live
+// process gives the batch map. Live, a worker thread owns the session: the LCM thread only
+// pairs scans with odometry and queues them, so mapping and periodic refinement never
+// block message handling and no scan is dropped while the mapper is busy. Publications
+// made by the worker go to an outbox that the LCM thread empties on a 10 ms timer (the bus
+// and its counters are touched by one thread only).
+//
+// --checkpoint FILE saves the whole state every --checkpoint-every scans and at shutdown
+// (SIGINT/SIGTERM, end of log), before the final refinement; a restart with the same FILE
+// resumes from it. --load-map starts from a saved contour map; --save-map writes the map at
+// every checkpoint and at shutdown.
 
+#include <algorithm>
 #include <chrono>
+#include <condition_variable>
 #include <cstdio>
+#include <ctime>
 #include <deque>
-#include <map>
+#include <filesystem>
+#include <mutex>
+#include <thread>
+#include <utility>
 
 #include "common/config.h"
 #include "common/file_io.h"
 #include "common/log.h"
+#include "common/node/bus.h"
+#include "common/node/contour_map_conversions.h"
 #include "common/node/conversions.h"
-#include "common/node/event_log.h"
-#include "common/pose_at_time.h"
+#include "common/node/node_runtime.h"
+#include "common/node/scan_odometry_sync.h"
 #include "logger/svg_render.h"
 #include "mapper/contour_map_io.h"
-#include "mapper/contour_mapper.h"
+#include "mapper/map_checkpoint.h"
+#include "mapper/mapping_session.h"
+#include "minenav/contour_map_t.hpp"
+#include "minenav/heartbeat_t.hpp"
 #include "minenav/ladar_scan_t.hpp"
 #include "minenav/odometry_t.hpp"
+#include "minenav/pose_estimate_t.hpp"
 
 namespace minenav {
 namespace {
 
-struct BatchOptions {
-  std::string log;
+struct ProcessOptions {
   std::string map_out;
   std::string poses_out;
   std::string svg_out;
+  std::string checkpoint;
+  int checkpoint_every = 0;  // scans; 0 = only at shutdown
+  std::string load_map;
+  std::string save_map;
   std::string scan_channel = "LADAR_SCAN";
   std::string odometry_channel = "ODOMETRY";
+  std::string pose_channel = "POSE";
+  std::string map_channel = "CONTOUR_MAP";
   double max_odometry_gap = 1.0;  // s
   int final_refinement_rounds = 10;
+  int compress_above = kContourMapCompressAbove;  // bytes
 };
+
+void Declare(ConfigSchema& s, ProcessOptions& p, mapper::MappingSessionOptions& so) {
+  mapper::ContourMapperOptions& mo = so.mapper;
+  s.AddString("map_out", &p.map_out, "contour-map JSON written at the end (required with --log)");
+  s.AddString("poses_out", &p.poses_out, "poses CSV utime,x,y,theta written at the end, one row per inserted or tracked scan");
+  s.AddString("svg_out", &p.svg_out, "SVG of the map and the trajectory written at the end");
+  s.AddString("checkpoint", &p.checkpoint, "checkpoint file: resumed from when it exists, saved at shutdown");
+  s.AddInt("checkpoint_every", &p.checkpoint_every, "also save the checkpoint every this many scans (0 = at shutdown only)",
+           0, 1000000);
+  s.AddString("load_map", &p.load_map, "start from this contour-map JSON (localise against it, keep extending)");
+  s.AddString("save_map", &p.save_map, "contour-map JSON written at every checkpoint and at shutdown");
+  s.AddChannel("scan_channel", &p.scan_channel, "subscribes", "ladar_scan_t", "scans");
+  s.AddChannel("odometry_channel", &p.odometry_channel, "subscribes", "odometry_t", "initial estimates");
+  s.AddChannel("pose_channel", &p.pose_channel, "publishes", "pose_estimate_t", "one estimate per scan (source clue)");
+  s.AddChannel("map_channel", &p.map_channel, "publishes", "contour_map_t", "the map whenever it changed");
+  s.AddDouble("max_odometry_gap", &p.max_odometry_gap, "s",
+              "farthest odometry reading from a scan's utime that may serve for it", 0.0, 3600.0);
+  s.AddInt("final_refinement_rounds", &p.final_refinement_rounds,
+           "concurrent refinement rounds at the end (0 = none); also bounds periodic refinement", 0, 1000);
+  s.AddInt("compress_above", &p.compress_above, "CONTOUR_MAP travels zlib-compressed above this many bytes", 0,
+           1 << 30);
+  s.AddDouble("insert_min_translation", &so.insert_min_translation, "m",
+              "insert a scan when the vehicle moved this far since the last inserted one; others are tracked "
+              "(0 = off; both off = insert every scan)",
+              0.0, 1000.0);
+  s.AddDouble("insert_min_rotation", &so.insert_min_rotation, "rad",
+              "insert a scan when the heading changed this much since the last inserted one (0 = off)", 0.0, 3.2);
+  s.AddInt("refine_every_inserts", &so.refine_every_inserts,
+           "concurrent refinement after every this many inserts (0 = only at the end)", 0, 1000000);
+  s.AddDouble("max_correction_translation", &mo.max_correction_translation, "m",
+              "refuse a scan whose estimate moves further than this from its initial pose", 0.01, 100.0);
+  s.AddDouble("max_correction_rotation", &mo.max_correction_rotation, "rad",
+              "refuse a scan whose estimate turns further than this from its initial pose", 0.001, 3.2);
+  s.AddDouble("max_rms_distance", &mo.max_rms_distance, "m",
+              "refuse a scan whose RMS distance to the matched contours stays above this", 0.001, 10.0);
+  s.AddDouble("min_overlap_fraction", &mo.min_overlap_fraction, "1",
+              "fraction of a scan's points that must match the map", 0.0, 1.0);
+  s.AddHelpEpilog(
+      "Examples:\n"
+      "  contour_mapper --log survey.lcm --map-out map.json --poses-out poses.csv --svg-out map.svg   (batch)\n"
+      "  contour_mapper --checkpoint run.ckpt --checkpoint-every 10 --save-map map.json                 (live)\n"
+      "Exit codes: 0 ok, 2 bad flag or input file, 3 runtime failure.\n");
+}
+
+double ThreadCpuSeconds() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
+struct Publication {
+  std::string channel;
+  std::vector<uint8_t> bytes;
+};
+
+pose_estimate_t RefusedPose(const LadarScan& scan, const Pose2& pose, const std::string& status) {
+  PoseEstimate e;
+  e.utime = scan.utime;
+  e.scan_id = scan.scan_id;
+  e.source = "clue";
+  e.pose = pose;
+  e.converged = false;
+  e.status = status;
+  return ToLcm(e);
+}
+
+// The mapping session and what the process does with each result. One thread at a time:
+// the worker while it runs, the main thread before it starts and after it joined.
+class MapperCore {
+ public:
+  MapperCore(const ProcessOptions& p, mapper::MappingSession session) : p_(p), session_(std::move(session)) {}
+
+  mapper::MappingSession& session() { return session_; }
+  const std::vector<double>& handle_seconds() const { return handle_seconds_; }
+  const std::vector<double>& handle_cpu_seconds() const { return handle_cpu_seconds_; }
+
+  // Maps one scan; returns what to publish.
+  std::vector<Publication> Handle(const SyncedScan& s) {
+    const auto start = std::chrono::steady_clock::now();
+    const double cpu0 = ThreadCpuSeconds();
+    std::vector<Publication> out;
+    const mapper::ScanResult r = session_.AddScan(s.scan, *s.odometry);
+    PoseEstimate e;
+    e.utime = s.scan.utime;
+    e.scan_id = s.scan.scan_id;
+    e.source = "clue";
+    e.pose = r.pose;
+    e.residual = r.rms_distance;
+    e.num_points = r.num_points;
+    e.num_inliers = r.num_matched;
+    e.iterations = r.iterations;
+    e.converged = r.accepted();
+    e.status = r.accepted() ? std::string("ok: ") + ToString(r.outcome) : r.reason;
+    e.compute_time = ThreadCpuSeconds() - cpu0;
+    out.push_back({p_.pose_channel, EncodeMessage(ToLcm(e))});
+    const auto& st = session_.state();
+    if (r.accepted()) {
+      MINENAV_LOG(kInfo) << "scan " << s.scan.scan_id << " at " << s.scan.utime << ": " << ToString(r.outcome)
+                         << ", " << session_.map().NumContours() << " contours, " << st.inserted << " inserted "
+                         << st.tracked << " tracked " << st.refused << " refused";
+      status_ = {heartbeat_t::OK, ""};
+    } else {
+      MINENAV_LOG(kWarn) << "scan " << s.scan.scan_id << " at " << s.scan.utime << ": refused: " << r.reason;
+      status_ = {heartbeat_t::WARN, "last scan refused: " + r.reason};
+    }
+    if (r.outcome == mapper::ScanOutcome::kInserted) out.push_back(MapMessage(s.scan.utime));
+    if (!p_.checkpoint.empty() && p_.checkpoint_every > 0 && ++since_checkpoint_ >= p_.checkpoint_every) {
+      SaveState();
+      since_checkpoint_ = 0;
+    }
+    handle_cpu_seconds_.push_back(ThreadCpuSeconds() - cpu0);
+    handle_seconds_.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    return out;
+  }
+
+  Publication MapMessage(int64_t utime, int64_t extra_version = 0) {
+    ContourMapMessage m;
+    m.utime = utime;
+    const auto& st = session_.state();
+    // Every handled scan counts, so the version keeps increasing across a restart.
+    m.version = st.inserted + st.tracked + st.refused + extra_version;
+    m.num_scans = static_cast<int32_t>(session_.mapper().scans().size());
+    for (const auto& [id, c] : session_.map().contours()) m.contours.push_back({id, c.closed, c.points});
+    const contour_map_t msg = ContourMapToLcm(m, p_.compress_above);
+    last_map_bytes_ = msg.getEncodedSize();
+    return {p_.map_channel, EncodeMessage(msg)};
+  }
+
+  // Checkpoint and map file (atomic writes).
+  void SaveState() {
+    if (!p_.checkpoint.empty()) {
+      const auto t0 = std::chrono::steady_clock::now();
+      mapper::SaveCheckpoint(p_.checkpoint, session_);
+      MINENAV_LOG(kInfo) << "checkpoint " << p_.checkpoint << ": " << session_.mapper().scans().size() << " scans, "
+                         << std::filesystem::file_size(p_.checkpoint) << " bytes, "
+                         << std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() << " s";
+    }
+    if (!p_.save_map.empty()) mapper::SaveContourMapJson(p_.save_map, session_.map());
+  }
+
+  std::pair<int8_t, std::string> status() const { return status_; }
+  int last_map_bytes() const { return last_map_bytes_; }
+
+ private:
+  const ProcessOptions& p_;
+  mapper::MappingSession session_;
+  int since_checkpoint_ = 0;
+  std::pair<int8_t, std::string> status_{heartbeat_t::OK, ""};
+  int last_map_bytes_ = 0;
+  std::vector<double> handle_seconds_, handle_cpu_seconds_;
+};
+
+// Live: the thread that owns the MapperCore while the process runs.
+class Worker {
+ public:
+  explicit Worker(MapperCore& core) : core_(core), thread_([this] { Loop(); }) {}
+  ~Worker() { Finish(); }
+  Worker(const Worker&) = delete;
+  Worker& operator=(const Worker&) = delete;
+
+  void Push(SyncedScan s) {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      queue_.push_back(std::move(s));
+    }
+    wake_.notify_one();
+  }
+  // Publications made since the last call, and the latest heartbeat status.
+  std::vector<Publication> TakeOutbox(std::pair<int8_t, std::string>* status) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    *status = status_;
+    return std::exchange(outbox_, {});
+  }
+  // Handles every queued scan, then stops the thread.
+  void Finish() {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      done_ = true;
+    }
+    wake_.notify_one();
+    if (thread_.joinable()) thread_.join();
+  }
+
+ private:
+  void Loop() {
+    for (;;) {
+      SyncedScan s;
+      {
+        std::unique_lock<std::mutex> lock(mutex_);
+        wake_.wait(lock, [this] { return done_ || !queue_.empty(); });
+        if (queue_.empty()) return;
+        s = std::move(queue_.front());
+        queue_.pop_front();
+      }
+      std::vector<Publication> out;
+      try {
+        out = core_.Handle(s);  // no lock held: the LCM thread keeps queuing
+      } catch (const std::exception& e) {
+        // A failure inside the mapper must not kill the process or lose later scans.
+        MINENAV_LOG(kError) << "scan " << s.scan.scan_id << ": mapper failed: " << e.what();
+      }
+      std::lock_guard<std::mutex> lock(mutex_);
+      status_ = core_.status();
+      for (Publication& p : out) outbox_.push_back(std::move(p));
+    }
+  }
+
+  MapperCore& core_;
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  std::deque<SyncedScan> queue_;
+  std::vector<Publication> outbox_;
+  std::pair<int8_t, std::string> status_{heartbeat_t::OK, ""};
+  bool done_ = false;
+  std::thread thread_;  // last: starts after the members it uses exist
+};
+
+double Median(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+void WriteOutputs(const ProcessOptions& p, const mapper::MappingSession& session, const std::string& title) {
+  const std::vector<StampedPose> poses = session.Poses();
+  if (!p.map_out.empty()) mapper::SaveContourMapJson(p.map_out, session.map());
+  if (!p.save_map.empty()) mapper::SaveContourMapJson(p.save_map, session.map());
+  if (!p.poses_out.empty()) SavePosesCsv(p.poses_out, poses);
+  if (!p.svg_out.empty()) {
+    SvgScene scene;
+    scene.title = "contour map of " + title;
+    const auto& st = session.state();
+    scene.notes.push_back(std::to_string(st.inserted) + " scans inserted, " + std::to_string(st.tracked) +
+                          " tracked, " + std::to_string(st.refused) + " refused, " +
+                          std::to_string(session.map().NumContours()) + " contours");
+    SvgLineLayer contours{"contours", "#1f4e9c", 1.6, {}, {}};
+    for (const auto& [id, c] : session.map().contours()) contours.polylines.push_back({c.points, c.closed});
+    scene.lines.push_back(contours);
+    SvgTrajectory trajectory{"refined poses", "#c0392b", 1.5, false, true, {}};
+    for (const auto& q : poses) trajectory.poses.push_back(q.pose);
+    scene.trajectories.push_back(trajectory);
+    WriteFileAtomically(p.svg_out, RenderSvg(scene));
+  }
+  MINENAV_LOG(kInfo) << "wrote" << (p.map_out.empty() ? "" : " " + p.map_out) << " ("
+                     << session.map().NumContours() << " contours)"
+                     << (p.poses_out.empty() ? "" : ", " + p.poses_out + " (" + std::to_string(poses.size()) + " poses)")
+                     << (p.svg_out.empty() ? "" : ", " + p.svg_out);
+}
 
 int Main(int argc, char** argv) {
   ConfigSchema schema("contour_mapper",
-                      "Contour mapper (thesis ch. 4, CLUE), batch over a log: LADAR_SCAN + ODOMETRY -> "
-                      "contour map, refined poses, picture.");
-  BatchOptions o;
-  mapper::ContourMapperOptions mo;
-  schema.AddString("log", &o.log, "LCM log to map (required)");
-  schema.AddString("map_out", &o.map_out, "contour-map JSON to write (required)");
-  schema.AddString("poses_out", &o.poses_out, "refined poses CSV utime,x,y,theta, one row per accepted scan");
-  schema.AddString("svg_out", &o.svg_out, "SVG of the map, the scans and the trajectory");
-  schema.AddChannel("scan_channel", &o.scan_channel, "reads", "ladar_scan_t", "scans");
-  schema.AddChannel("odometry_channel", &o.odometry_channel, "reads", "odometry_t", "initial estimates");
-  schema.AddDouble("max_odometry_gap", &o.max_odometry_gap, "s",
-                   "farthest odometry reading from a scan's utime that may serve for it", 0.0, 3600.0);
-  schema.AddInt("final_refinement_rounds", &o.final_refinement_rounds,
-                "concurrent refinement rounds at the end (0 = none)", 0, 1000);
-  schema.AddDouble("max_correction_translation", &mo.max_correction_translation, "m",
-                   "refuse a scan whose estimate moves further than this from its initial pose", 0.01, 100.0);
-  schema.AddDouble("max_correction_rotation", &mo.max_correction_rotation, "rad",
-                   "refuse a scan whose estimate turns further than this from its initial pose", 0.001, 3.2);
-  schema.AddDouble("max_rms_distance", &mo.max_rms_distance, "m",
-                   "refuse a scan whose RMS distance to the matched contours stays above this", 0.001, 10.0);
-  schema.AddDouble("min_overlap_fraction", &mo.min_overlap_fraction, "1",
-                   "fraction of a scan's points that must match the map", 0.0, 1.0);
-  schema.AddHelpEpilog(
-      "Example:\n"
-      "  contour_mapper --log survey.lcm --map-out map.json --poses-out poses.csv --svg-out map.svg\n"
-      "Exit codes: 0 ok, 2 bad flag or input file, 3 runtime failure.\n");
+                      "Contour mapper (thesis ch. 4, CLUE): LADAR_SCAN + ODOMETRY -> contour map (CONTOUR_MAP), "
+                      "poses (POSE); batch over a log with --log.");
+  NodeRuntime runtime("contour_mapper", schema);
+  ProcessOptions p;
+  mapper::MappingSessionOptions so;
+  Declare(schema, p, so);
   if (schema.Parse(argc, argv) == ParseOutcome::kExit) return 0;
-  if (o.log.empty()) throw UsageError("--log is required (this version maps logs; see --help)");
-  if (o.map_out.empty()) throw UsageError("--map-out is required");
-  mo.refinement.max_rounds = std::max(1, o.final_refinement_rounds);
-  const std::string why = mapper::ValidateOptions(mo);
-  if (!why.empty()) throw UsageError(why);
+  const bool batch = !runtime.options().log.empty();
+  if (batch && p.map_out.empty()) throw UsageError("--map-out is required with --log");
+  if (p.checkpoint_every > 0 && p.checkpoint.empty()) throw UsageError("--checkpoint-every needs --checkpoint FILE");
+  so.mapper.refinement.max_rounds = std::max(1, p.final_refinement_rounds);
+  if (const std::string why = mapper::ValidateOptions(so); !why.empty()) throw UsageError(why);
 
-  // Read every scan and odometry reading first: a log is ordered by receive time, and an
-  // offline survey writes ODOMETRY next to its scan.
-  std::vector<LadarScan> scans;
-  std::deque<OdometryReading> odometry;
-  int bad = 0;
-  LogReader reader(o.log);
-  while (const LogEvent* e = reader.NextInPlace()) {
-    std::string error;
-    try {
-      if (e->channel == o.scan_channel) {
-        ladar_scan_t m{};
-        if (!DecodeMessage(e->data.data(), static_cast<int>(e->data.size()), e->channel, &m, &error))
-          throw InputError(error);
-        scans.push_back(FromLcm(m));
-      } else if (e->channel == o.odometry_channel) {
-        odometry_t m{};
-        if (!DecodeMessage(e->data.data(), static_cast<int>(e->data.size()), e->channel, &m, &error))
-          throw InputError(error);
-        odometry.push_back(FromLcm(m));
-      }
-    } catch (const InputError& err) {
-      ++bad;
-      MINENAV_LOG(kWarn) << "event " << e->eventnum << ": " << err.what() << "; skipped";
-    }
+  // The starting state: a checkpoint to resume, a map to extend, or nothing.
+  std::unique_ptr<MapperCore> core;
+  if (!p.checkpoint.empty() && std::filesystem::exists(p.checkpoint)) {
+    core = std::make_unique<MapperCore>(p, mapper::RestoreSession(so, mapper::LoadCheckpoint(p.checkpoint)));
+    const auto& st = core->session().state();
+    MINENAV_LOG(kInfo) << "resumed from " << p.checkpoint << ": " << core->session().mapper().scans().size()
+                       << " scans, " << core->session().map().NumContours() << " contours, " << st.inserted
+                       << " inserted " << st.tracked << " tracked " << st.refused << " refused";
+    if (!p.load_map.empty()) MINENAV_LOG(kWarn) << "--load-map ignored: resuming from the checkpoint";
+  } else if (!p.load_map.empty()) {
+    core = std::make_unique<MapperCore>(
+        p, mapper::MappingSession(so, mapper::LoadContourMapJson(p.load_map, so.mapper.grid_cell_size)));
+    MINENAV_LOG(kInfo) << "map " << p.load_map << ": " << core->session().map().NumContours() << " contours";
+  } else {
+    core = std::make_unique<MapperCore>(p, mapper::MappingSession(so));
   }
-  std::stable_sort(odometry.begin(), odometry.end(),
-                   [](const OdometryReading& a, const OdometryReading& b) { return a.utime < b.utime; });
-  if (scans.empty()) throw InputError(o.log + ": no " + o.scan_channel + " messages");
-  MINENAV_LOG(kInfo) << o.log << ": " << scans.size() << " scans, " << odometry.size() << " odometry readings, "
-                     << bad << " bad messages";
 
-  const int64_t max_gap_us = std::llround(o.max_odometry_gap * 1e6);
-  mapper::ContourMapper mapper(mo);
-  std::vector<StampedPose> poses;
-  std::optional<std::pair<Pose2, Pose2>> last;  // (refined pose, odometry) of the last accepted scan
+  runtime.Start();
+  Bus& bus = runtime.bus();
+  ScanOdometrySync sync({.max_odometry_gap_us = std::llround(p.max_odometry_gap * 1e6)});
+  std::unique_ptr<Worker> worker;
+  if (!batch) worker = std::make_unique<Worker>(*core);
+  int64_t no_odometry = 0, scans_seen = 0;
   const auto start = std::chrono::steady_clock::now();
-  for (size_t i = 0; i < scans.size(); ++i) {
-    const LadarScan& scan = scans[i];
-    const std::optional<Pose2> odo = PoseAtTime(odometry, scan.utime, max_gap_us);
-    if (!odo) {
-      MINENAV_LOG(kWarn) << "scan " << scan.scan_id << ": no odometry within " << o.max_odometry_gap << " s; skipped";
-      continue;
+
+  auto publish_all = [&](std::vector<Publication> pubs) {
+    for (const Publication& pub : pubs) bus.Publish(pub.channel, pub.bytes.data(), static_cast<int>(pub.bytes.size()));
+  };
+  auto dispatch = [&](bool at_shutdown) {
+    for (SyncedScan& s : sync.TakeReady(at_shutdown)) {
+      if (!s.odometry) {
+        ++no_odometry;
+        const std::string why = "no odometry within " + std::to_string(p.max_odometry_gap) + " s";
+        MINENAV_LOG(kWarn) << "scan " << s.scan.scan_id << " at " << s.scan.utime << ": " << why << "; skipped";
+        Publish(bus, p.pose_channel, RefusedPose(s.scan, Pose2(), why));
+        runtime.SetStatus(heartbeat_t::WARN, "no odometry for a scan");
+        continue;
+      }
+      if (worker) {
+        worker->Push(std::move(s));
+        continue;
+      }
+      publish_all(core->Handle(s));
+      const auto [state, message] = core->status();
+      runtime.SetStatus(state, message);
+      if (batch)
+        std::fprintf(stderr, "\r[contour_mapper] scan %lld, %d contours, %.1f s   ", static_cast<long long>(scans_seen),
+                     core->session().map().NumContours(),
+                     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
     }
-    const Pose2 initial = last ? last->first * Between(last->second, *odo) : *odo;
-    const mapper::InsertResult r = mapper.InsertScan(scan, initial);
-    if (r.accepted) {
-      last = std::make_pair(r.pose, *odo);
-    } else {
-      MINENAV_LOG(kWarn) << "scan " << scan.scan_id << " refused: " << r.reason;
+  };
+
+  Subscribe<odometry_t>(bus, p.odometry_channel, [&](const odometry_t& m) {
+    if (!sync.AddOdometry(FromLcm(m))) MINENAV_LOG(kWarn) << p.odometry_channel << " time went back: history cleared";
+    dispatch(false);
+  });
+  Subscribe<ladar_scan_t>(bus, p.scan_channel, [&](const ladar_scan_t& m) {
+    LadarScan scan;
+    std::string why;
+    try {
+      scan = FromLcm(m);
+      why = ValidateScan(scan);
+    } catch (const InputError& e) {
+      why = e.what();
     }
-    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    std::fprintf(stderr, "\r[contour_mapper] scan %zu/%zu, %zu contours, %.1f s   ", i + 1, scans.size(),
-                 mapper.map().contours().size(), elapsed);
-  }
-  std::fprintf(stderr, "\n");
-  if (mapper.scans().empty()) throw std::runtime_error("no scan could be inserted");
-  if (o.final_refinement_rounds > 0) {
-    const auto refined = mapper.Refine();
-    MINENAV_LOG(kInfo) << "final refinement: " << refined.rounds << " rounds, " << refined.reason;
+    if (!why.empty()) {
+      // Reported on the bus too, so whoever waits for this scan's pose learns why; the
+      // throw counts it as a bad message and logs it (bus.h).
+      scan.utime = m.utime;
+      scan.scan_id = m.scan_id;
+      Publish(bus, p.pose_channel, RefusedPose(scan, Pose2(), "invalid scan: " + why));
+      throw InputError("invalid scan " + std::to_string(m.scan_id) + ": " + why);
+    }
+    ++scans_seen;
+    if (!sync.AddScan(std::move(scan))) MINENAV_LOG(kWarn) << "scans waiting for odometry: dropped the oldest";
+    dispatch(false);
+  });
+  if (worker) {
+    runtime.AddTimer(0.01, [&](int64_t) {
+      std::pair<int8_t, std::string> status;
+      publish_all(worker->TakeOutbox(&status));
+      runtime.SetStatus(status.first, status.second);
+    });
   }
 
-  // Poses of the accepted scans, keyed by their scans' utimes.
-  for (const mapper::MappedScan& s : mapper.scans()) poses.push_back({s.scan.utime, s.pose});
-  mapper::SaveContourMapJson(o.map_out, mapper.map());
-  if (!o.poses_out.empty()) SavePosesCsv(o.poses_out, poses);
-  if (!o.svg_out.empty()) {
-    SvgScene scene;
-    scene.title = "contour map of " + o.log;
-    scene.notes.push_back(std::to_string(mapper.scans().size()) + " of " + std::to_string(scans.size()) +
-                          " scans inserted, " + std::to_string(mapper.map().contours().size()) + " contours");
-    SvgLineLayer contours{"contours", "#1f4e9c", 1.6, {}, {}};
-    for (const auto& [id, c] : mapper.map().contours()) contours.polylines.push_back({c.points, c.closed});
-    scene.lines.push_back(contours);
-    SvgTrajectory trajectory{"refined poses", "#c0392b", 1.5, false, true, {}};
-    for (const auto& p : poses) trajectory.poses.push_back(p.pose);
-    scene.trajectories.push_back(trajectory);
-    WriteFileAtomically(o.svg_out, RenderSvg(scene));
-  }
-  MINENAV_LOG(kInfo) << "wrote " << o.map_out << " (" << mapper.map().contours().size() << " contours)"
-                     << (o.poses_out.empty() ? "" : ", " + o.poses_out) << (o.svg_out.empty() ? "" : ", " + o.svg_out);
-  return 0;
+  runtime.OnShutdown([&] {
+    dispatch(true);
+    if (worker) {
+      worker->Finish();  // every queued scan is mapped before the state is saved
+      std::pair<int8_t, std::string> status;
+      publish_all(worker->TakeOutbox(&status));
+    }
+    if (batch) std::fprintf(stderr, "\n");
+    mapper::MappingSession& session = core->session();
+    const auto& st = session.state();
+    MINENAV_LOG(kInfo) << scans_seen << " scans received: " << st.inserted << " inserted, " << st.tracked << " tracked, "
+                       << st.refused << " refused, " << no_odometry << " without odometry; median handling time "
+                       << Median(core->handle_seconds()) << " s wall, " << Median(core->handle_cpu_seconds())
+                       << " s CPU per scan; last CONTOUR_MAP " << core->last_map_bytes() << " bytes";
+    if (batch && scans_seen == 0)
+      throw InputError(runtime.options().log + ": no " + p.scan_channel + " messages");
+    core->SaveState();  // before the final refinement: a restart continues the same sequence
+    if (session.mapper().scans().empty()) {
+      if (batch) throw std::runtime_error("no scan could be inserted");
+      MINENAV_LOG(kWarn) << "no scan inserted: no map written";
+      return;
+    }
+    if (p.final_refinement_rounds > 0) {
+      const auto refined = session.Refine();
+      MINENAV_LOG(kInfo) << "final refinement: " << refined.rounds << " rounds, " << refined.reason;
+      publish_all({core->MapMessage(runtime.NowUtime(), 1)});
+    }
+    WriteOutputs(p, session, batch ? runtime.options().log : "the live run");
+  });
+  return runtime.Run();
 }
 
 }  // namespace
 }  // namespace minenav
 
 int main(int argc, char** argv) {
-  minenav::SetLogProgramName("contour_mapper");
-  try {
-    return minenav::Main(argc, argv);
-  } catch (const minenav::UsageError& e) {
-    std::fprintf(stderr, "contour_mapper: error: %s\n", e.what());
-    return minenav::kExitUsage;
-  } catch (const minenav::InputError& e) {
-    std::fprintf(stderr, "contour_mapper: error: %s\n", e.what());
-    return minenav::kExitUsage;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "contour_mapper: failed: %s\n", e.what());
-    return minenav::kExitRuntime;
-  }
+  return minenav::RunNodeMain("contour_mapper", [&] { return minenav::Main(argc, argv); });
 }

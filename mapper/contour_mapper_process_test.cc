@@ -91,7 +91,17 @@ TEST_F(ContourMapperProcessTest, MapsASurveyLogToTruth) {
 TEST_F(ContourMapperProcessTest, BadInputExitsTwoWithoutOutput) {
   const fs::path map = dir_ / "map.json", garbage = dir_ / "garbage.lcm";
   std::ofstream(garbage) << "this is not an LCM log";
-  EXPECT_EQ(RunProcess({MINENAV_CONTOUR_MAPPER_BIN, "--map-out", map.string()}, dir_ / "a.txt"), 2);
+  EXPECT_EQ(RunProcess({MINENAV_CONTOUR_MAPPER_BIN, "--log", garbage.string()}, dir_ / "a.txt"), 2);  // no --map-out
+  EXPECT_NE(ReadTextFile((dir_ / "a.txt").string()).find("--map-out"), std::string::npos);
+  EXPECT_EQ(RunProcess({MINENAV_CONTOUR_MAPPER_BIN, "--checkpoint-every", "3"}, dir_ / "e.txt"), 2);
+  EXPECT_NE(ReadTextFile((dir_ / "e.txt").string()).find("--checkpoint"), std::string::npos);
+  // A checkpoint that is not one, a map that does not exist: named, exit 2, nothing written.
+  EXPECT_EQ(RunProcess({MINENAV_CONTOUR_MAPPER_BIN, "--checkpoint", garbage.string(), "--map-out", map.string()},
+                       dir_ / "f.txt"),
+            2);
+  EXPECT_NE(ReadTextFile((dir_ / "f.txt").string()).find("not a contour-mapper checkpoint"), std::string::npos);
+  EXPECT_EQ(RunProcess({MINENAV_CONTOUR_MAPPER_BIN, "--load-map", (dir_ / "nomap.json").string()}, dir_ / "g.txt"), 2);
+  EXPECT_NE(ReadTextFile((dir_ / "g.txt").string()).find("nomap.json"), std::string::npos);
   EXPECT_EQ(RunProcess({MINENAV_CONTOUR_MAPPER_BIN, "--log", (dir_ / "missing.lcm").string(), "--map-out", map.string()},
                 dir_ / "b.txt"),
             2);

@@ -7,9 +7,9 @@ minenav_test(NAME mapping_session_test NO_LCM
   SOURCES ${CMAKE_CURRENT_LIST_DIR}/mapping_session_test.cc ${CMAKE_CURRENT_LIST_DIR}/map_checkpoint_test.cc
   LIBS minenav_mapping_session)
 
-# The contour_mapper process (batch over logs for now).
-minenav_executable(contour_mapper contour_mapper_main.cc)
-target_link_libraries(contour_mapper PRIVATE minenav_mapper minenav_logger_core minenav_node)
+# The contour_mapper process: batch over logs (--log) and live.
+minenav_executable(contour_mapper ${CMAKE_CURRENT_LIST_DIR}/contour_mapper_main.cc)
+target_link_libraries(contour_mapper PRIVATE minenav_mapping_session minenav_logger_core minenav_node Threads::Threads)
 
 if(EXISTS "${CMAKE_SOURCE_DIR}/tests/child_process.cc")
   minenav_test(NAME contour_mapper_process_test
@@ -18,4 +18,20 @@ if(EXISTS "${CMAKE_SOURCE_DIR}/tests/child_process.cc")
   target_compile_definitions(contour_mapper_process_test PRIVATE
     MINENAV_CONTOUR_MAPPER_BIN="$<TARGET_FILE:contour_mapper>" MINENAV_LOG_TOOL_BIN="$<TARGET_FILE:log_tool>")
   add_dependencies(contour_mapper_process_test contour_mapper log_tool)
+endif()
+
+# The live process on a real bus, in a private network namespace (tests/bus/private_net.sh).
+if(EXISTS "${CMAKE_SOURCE_DIR}/tests/child_process.cc")
+  add_executable(contour_mapper_live_test
+    ${CMAKE_CURRENT_LIST_DIR}/contour_mapper_live_test.cc "${CMAKE_SOURCE_DIR}/tests/child_process.cc")
+  target_include_directories(contour_mapper_live_test PRIVATE "${CMAKE_SOURCE_DIR}")
+  target_link_libraries(contour_mapper_live_test PRIVATE minenav_mapping_session minenav_node GTest::gtest_main)
+  minenav_warnings(contour_mapper_live_test)
+  set_target_properties(contour_mapper_live_test PROPERTIES RUNTIME_OUTPUT_DIRECTORY "${CMAKE_BINARY_DIR}/tests")
+  target_compile_definitions(contour_mapper_live_test PRIVATE
+    MINENAV_CONTOUR_MAPPER_BIN="$<TARGET_FILE:contour_mapper>" MINENAV_LOG_TOOL_BIN="$<TARGET_FILE:log_tool>")
+  add_dependencies(contour_mapper_live_test contour_mapper log_tool)
+  add_test(NAME mapper.live_replay_restart_bad_input
+    COMMAND "${CMAKE_SOURCE_DIR}/tests/bus/private_net.sh" --port 7760 -- $<TARGET_FILE:contour_mapper_live_test>)
+  set_tests_properties(mapper.live_replay_restart_bad_input PROPERTIES TIMEOUT 900 LABELS bus)
 endif()
