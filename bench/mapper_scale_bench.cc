@@ -4,7 +4,7 @@
 // and the final accuracy (by default without a final refinement: the incremental cycle).
 //
 //   mapper_scale_bench [--seed 1] [--rows 4] [--cols 6] [--stations 110] [--refine_rounds 0]
-//                      [--json_out FILE]
+//                      [--svg_out FILE] [--json_out FILE]
 
 #include <algorithm>
 #include <cstdio>
@@ -52,7 +52,7 @@ double Median(std::vector<double> v) {
 
 int Run(int argc, char** argv) {
   int seed = 1, rows = 4, cols = 6, stations = 110, refine_rounds = 0;
-  std::string json_out;
+  std::string json_out, svg_out;
   bool remove_redundant = true;
   minenav::ConfigSchema schema("mapper_scale_bench", "Contour mapper on a large research-mine-like area.");
   schema.AddInt("seed", &seed, "seed of the mine, the scans and the initial-pose noise", 0, 1000000);
@@ -61,6 +61,7 @@ int Run(int argc, char** argv) {
   schema.AddInt("stations", &stations, "survey stations", 2, 5000);
   schema.AddInt("refine_rounds", &refine_rounds, "final concurrent refinement rounds (0 = none)", 0, 1000);
   schema.AddBool("remove_redundant", &remove_redundant, "remove redundant contours in the final refinement");
+  schema.AddString("svg_out", &svg_out, "write a 16 m window around the worst map deviation as SVG ('' = none)");
   schema.AddString("json_out", &json_out, "write the results as JSON to this file ('' = none)");
   if (schema.Parse(argc, argv) == minenav::ParseOutcome::kExit) return 0;
 
@@ -125,13 +126,49 @@ int Run(int argc, char** argv) {
       max_err = std::max(max_err, minenav::TranslationDistance(cm.scans()[k].pose, truth[k]));
       max_h = std::max(max_h, minenav::HeadingDistance(cm.scans()[k].pose, truth[k]));
     }
-    std::printf("final refinement: %d rounds (%s), %.1f s CPU\n", rr.rounds, rr.reason.c_str(), refine_cpu);
+    std::printf("final refinement: %d rounds (%s), %.1f s CPU\npose graph: %s\n", rr.rounds, rr.reason.c_str(),
+                refine_cpu, rr.loop_closure.reason.c_str());
   }
   const mapper::MapDeviation dev = mapper::ContourDeviation(cm.map(), world);
   std::printf("research mine %d x %d pillars, %zu wall segments, %d stations: %d refused, max pose error %.4f m %.3f deg,\n"
               "deviation mean %.4f m max %.4f m, total insert CPU %.1f s, RSS growth %.1f MiB\n",
               rows, cols, world.size(), stations, refused, max_err, minenav::RadToDeg(max_h), dev.mean, dev.max, total,
               RssMiB() - rss0);
+  std::printf("worst deviation at (%.2f, %.2f) on contour %d\n", dev.worst_point.x(), dev.worst_point.y(), dev.worst_contour);
+  if (!svg_out.empty()) {
+    // True walls grey, contours blue (the worst one red), scan stations green, window 16 m.
+    const Eigen::Vector2d c = dev.worst_point;
+    const double half = 8.0, scale = 50.0;  // px per m
+    auto px = [&](const Eigen::Vector2d& p) {
+      return Eigen::Vector2d((p.x() - c.x() + half) * scale, (c.y() + half - p.y()) * scale);
+    };
+    std::string svg = "<svg xmlns='http://www.w3.org/2000/svg' width='800' height='800'>\n<rect width='800' height='800' fill='white'/>\n";
+    char buf[256];
+    for (const minenav::Segment& w : world) {
+      const Eigen::Vector2d a = px(w.a), b = px(w.b);
+      std::snprintf(buf, sizeof(buf), "<line x1='%.1f' y1='%.1f' x2='%.1f' y2='%.1f' stroke='#999' stroke-width='6'/>\n", a.x(), a.y(), b.x(), b.y());
+      svg += buf;
+    }
+    for (const auto& [id, contour] : cm.map().contours()) {
+      const char* colour = id == dev.worst_contour ? "red" : "blue";
+      for (int k = 0; k < contour.NumSegments(); ++k) {
+        const minenav::Segment s = contour.GetSegment(k);
+        const Eigen::Vector2d a = px(s.a), b = px(s.b);
+        std::snprintf(buf, sizeof(buf), "<line x1='%.1f' y1='%.1f' x2='%.1f' y2='%.1f' stroke='%s' stroke-width='1.5'/>\n", a.x(), a.y(), b.x(), b.y(), colour);
+        svg += buf;
+      }
+    }
+    for (const mapper::MappedScan& m : cm.scans()) {
+      const Eigen::Vector2d p = px(m.pose.translation());
+      std::snprintf(buf, sizeof(buf), "<circle cx='%.1f' cy='%.1f' r='5' fill='green'/>\n", p.x(), p.y());
+      svg += buf;
+    }
+    const Eigen::Vector2d w = px(c);
+    std::snprintf(buf, sizeof(buf), "<circle cx='%.1f' cy='%.1f' r='12' fill='none' stroke='orange' stroke-width='2'/>\n", w.x(), w.y());
+    svg += buf;
+    svg += "</svg>\n";
+    minenav::WriteFileAtomically(svg_out, svg);
+  }
   if (!json_out.empty()) {
     nlohmann::json j;
     j["benchmark"] = "mapper_scale_bench";

@@ -278,7 +278,9 @@ LoopClosureResult CloseLoops(std::vector<MappedScan>& scans, ContourMap& map, co
       << " gated out), largest correction " << out.max_correction_translation << " m, "
       << RadToDeg(out.max_correction_rotation) << " deg, largest disagreement " << out.max_disagreement_translation
       << " m, " << RadToDeg(out.max_disagreement_rotation) << " deg";
-  if (!out.graph.converged) {
+  // The iteration limit still leaves a solution that lowered the cost (LM accepts only
+  // descending steps); anything else (bad edges, no anchor) is a failure.
+  if (!out.graph.converged && out.graph.reason != "iteration limit") {
     out.reason = "pose graph failed: " + out.graph.reason;
     return out;
   }

@@ -41,6 +41,7 @@ namespace minenav::mapper {
 inline PoseGraphOptions DefaultLoopClosureGraphOptions() {
   PoseGraphOptions o;
   o.huber_scale = 3.0;
+  o.max_iterations = 100;  // reweighting slows convergence
   return o;
 }
 
