@@ -213,6 +213,12 @@ class MapperCore {
 
   std::pair<int8_t, std::string> status() const { return status_; }
   int last_map_bytes() const { return last_map_bytes_; }
+  // Bytes of the current map as CONTOUR_MAP, plain and compressed (for the summary line).
+  std::pair<int, int> MapSizes() {
+    ContourMapMessage m;
+    for (const auto& [id, c] : session_.map().contours()) m.contours.push_back({id, c.closed, c.points});
+    return {ContourMapToLcm(m, 1 << 30).getEncodedSize(), ContourMapToLcm(m, 0).getEncodedSize()};
+  }
 
  private:
   const ProcessOptions& p_;
@@ -433,7 +439,8 @@ int Main(int argc, char** argv) {
     MINENAV_LOG(kInfo) << scans_seen << " scans received: " << st.inserted << " inserted, " << st.tracked << " tracked, "
                        << st.refused << " refused, " << no_odometry << " without odometry; median handling time "
                        << Median(core->handle_seconds()) << " s wall, " << Median(core->handle_cpu_seconds())
-                       << " s CPU per scan; last CONTOUR_MAP " << core->last_map_bytes() << " bytes";
+                       << " s CPU per scan; last CONTOUR_MAP " << core->last_map_bytes() << " bytes (map "
+                       << core->MapSizes().first << " bytes plain, " << core->MapSizes().second << " compressed)";
     if (batch && scans_seen == 0)
       throw InputError(runtime.options().log + ": no " + p.scan_channel + " messages");
     core->SaveState();  // before the final refinement: a restart continues the same sequence
