@@ -15,8 +15,6 @@
 // scan's utime), or the odometry pose itself for the first scan. A scan waits until
 // odometry at or after its utime has arrived.
 
-#include <zlib.h>
-
 #include <algorithm>
 #include <ctime>
 #include <deque>
@@ -30,6 +28,7 @@
 #include "common/log.h"
 #include "common/pose_at_time.h"
 #include "common/node/bus.h"
+#include "common/node/contour_map_conversions.h"
 #include "common/node/conversions.h"
 #include "common/node/node_runtime.h"
 #include "common/node/scan_odometry_sync.h"
@@ -105,28 +104,13 @@ void Declare(ConfigSchema& s, ProcessOptions& p, IconicEstimatorOptions& e) {
       "Exit codes: 0 ok, 2 bad flag or input file, 3 runtime failure.\n");
 }
 
-// Contours as segments; a compressed map is inflated first (contour_map_t's comment).
+// Contours as segments; a compressed map is inflated and validated first
+// (common/node/contour_map_conversions.h).
 std::vector<Segment> ContourMapSegments(const contour_map_t& m) {
-  if (m.encoding == contour_map_t::ENCODING_ZLIB) {
-    if (m.uncompressed_size <= 0 || m.uncompressed_size > (256 << 20))
-      throw InputError("contour map: bad uncompressed_size " + std::to_string(m.uncompressed_size));
-    std::vector<uint8_t> raw(static_cast<size_t>(m.uncompressed_size));
-    uLongf size = static_cast<uLongf>(raw.size());
-    if (uncompress(raw.data(), &size, m.payload.data(), static_cast<uLong>(m.payload.size())) != Z_OK ||
-        size != raw.size())
-      throw InputError("contour map: payload does not inflate to " + std::to_string(m.uncompressed_size) + " bytes");
-    contour_map_t inner{};
-    std::string error;
-    if (!DecodeMessage(raw.data(), static_cast<int>(raw.size()), "CONTOUR_MAP payload", &inner, &error))
-      throw InputError(error);
-    if (inner.encoding == contour_map_t::ENCODING_ZLIB) throw InputError("contour map: nested compression");
-    return ContourMapSegments(inner);
-  }
   std::vector<Segment> out;
-  for (const contour_t& c : m.contours) {
-    if (c.x.size() != c.y.size()) throw InputError("contour map: contour with x and y of different sizes");
-    for (size_t i = 1; i < c.x.size(); ++i) out.emplace_back(c.x[i - 1], c.y[i - 1], c.x[i], c.y[i]);
-    if (c.closed && c.x.size() > 2) out.emplace_back(c.x.back(), c.y.back(), c.x.front(), c.y.front());
+  for (const ContourPolyline& c : ContourMapFromLcm(m).contours) {
+    for (size_t i = 1; i < c.points.size(); ++i) out.emplace_back(c.points[i - 1], c.points[i]);
+    if (c.closed && c.points.size() > 2) out.emplace_back(c.points.back(), c.points.front());
   }
   return out;
 }
