@@ -24,6 +24,8 @@ std::string ValidateOptions(const LoopClosureOptions& o) {
     why << "min_overlap must be in [0, 1], got " << o.min_overlap;
   else if (!(o.max_residual > 0.0))
     why << "max_residual must be > 0 m, got " << o.max_residual;
+  else if (o.max_recent_pairs < 1 || o.max_loop_pairs < 0 || o.loop_index_gap < 1)
+    why << "need max_recent_pairs >= 1, max_loop_pairs >= 0, loop_index_gap >= 1";
   else if (!(o.max_rotation_change > 0.0))
     why << "max_rotation_change must be > 0 rad, got " << o.max_rotation_change;
   else if (o.point_stride < 1)
@@ -82,11 +84,33 @@ std::vector<ScanPairEdge> RegisterScanPairs(const std::vector<MappedScan>& scans
   std::vector<double> floors;
   for (double f = o.coarse_threshold; f > o.min_threshold; f *= o.coarse_factor) floors.push_back(f);
   floors.push_back(o.min_threshold);
+  // Partners of each later scan j: within max_pair_distance, the nearest max_recent_pairs
+  // and the nearest max_loop_pairs that are at least loop_index_gap scans back (loop
+  // candidates, which the recent ones would otherwise crowd out).
+  std::vector<std::vector<bool>> pair(n);
+  for (size_t j = 1; j < n; ++j) {
+    std::vector<std::pair<double, size_t>> recent, loop;
+    for (size_t i = 0; i < j; ++i) {
+      const double d = (sensor[j] - sensor[i]).norm();
+      if (d > o.max_pair_distance) continue;
+      (j - i >= static_cast<size_t>(o.loop_index_gap) ? loop : recent).emplace_back(d, i);
+    }
+    std::sort(recent.begin(), recent.end());
+    std::sort(loop.begin(), loop.end());
+    if (recent.size() > static_cast<size_t>(o.max_recent_pairs)) recent.resize(static_cast<size_t>(o.max_recent_pairs));
+    if (loop.size() > static_cast<size_t>(o.max_loop_pairs)) loop.resize(static_cast<size_t>(o.max_loop_pairs));
+    for (const auto& r : {recent, loop})
+      for (const auto& [d, i] : r) {
+        if (pair[i].empty()) pair[i].assign(n, false);
+        pair[i][j] = true;
+      }
+  }
   for (size_t i = 0; i < n; ++i) {
     // One lookup table per scan, in its own frame, built only if some later scan pairs with it.
     std::unique_ptr<LookupTableCorrespondence> table;
+    if (pair[i].empty()) continue;
     for (size_t j = i + 1; j < n; ++j) {
-      if ((sensor[j] - sensor[i]).norm() > o.max_pair_distance) continue;
+      if (!pair[i][j]) continue;
       if (points[j].size() < 10) continue;
       if (!table) {
         std::vector<Segment> segments = RawPolylines(scans[i].scan);

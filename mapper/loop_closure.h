@@ -2,8 +2,8 @@
 // Loop closure by a pose graph (beyond thesis 4.7; thesis 7.2.2 "iconic front end"): the
 // joint step that lets concurrent refinement close a drifted loop in one go instead of
 // passing the correction around the loop one scan per round.
-//   1. Every pair of scans whose current sensor positions are within max_pair_distance is
-//      registered directly, scan against scan: the points of the later scan against the raw
+//   1. Pairs of scans whose current sensor positions are within max_pair_distance (a few
+//      nearest recent scans and a few nearest loop candidates per scan) are registered directly, scan against scan: the points of the later scan against the raw
 //      polylines of the earlier one (the iconic matcher of thesis 3.3, pose_estimator/),
 //      from their current relative pose. A registration that converges with enough overlap
 //      and a small residual becomes an edge with the matcher's covariance.
@@ -51,6 +51,13 @@ struct LoopClosureOptions {
   // m; pairs of scans whose sensors are farther apart than this (at the current poses) are
   // not registered.
   double max_pair_distance = 20.0;
+  // Each scan is registered against at most max_recent_pairs nearest earlier scans and
+  // max_loop_pairs nearest scans at least loop_index_gap scans earlier (loop candidates), so
+  // the cost grows with the number of scans, not with its square, where many scans crowd
+  // one place (a robot scanning at 5-10 Hz).
+  int max_recent_pairs = 4;
+  int max_loop_pairs = 4;
+  int loop_index_gap = 8;
   // m; first correspondence threshold of a registration: how far the current relative pose
   // of two scans may be off (also the reach of each scan's lookup table).
   double initial_threshold = 1.0;

@@ -135,5 +135,26 @@ TEST(LoopClosureTest, ConsistentPosesAreLeftAlone) {
   for (const int id : map.Ids()) EXPECT_EQ(map.Get(id).points, map_before.Get(id).points);
 }
 
+// Many scans crowding one place (a robot scanning at 10 Hz): each scan is registered against
+// a bounded number of others, so the work grows with the scans, not with their square.
+TEST(LoopClosureTest, PairsPerScanAreBounded) {
+  const Pose2 station = LoopStations()[0];
+  std::vector<MappedScan> scans;
+  ScanSpec spec;
+  spec.num_points = 360;
+  spec.max_range = 15.0;
+  for (int k = 0; k < 40; ++k) {
+    spec.seed = static_cast<unsigned>(k + 1);
+    const Pose2 p(station.x + 0.05 * k, station.y, station.theta);
+    scans.push_back({PreprocessScan(MakeScan(LoopWorld(), p, spec), {}), p, k == 0});
+  }
+  LoopClosureOptions o;
+  int tried = 0;
+  const std::vector<ScanPairEdge> edges = RegisterScanPairs(scans, o, &tried);
+  EXPECT_LE(tried, 39 * (o.max_recent_pairs + o.max_loop_pairs));  // all pairs would be 780
+  EXPECT_GE(tried, 39 * o.max_recent_pairs - 6);
+  EXPECT_GT(edges.size(), static_cast<size_t>(tried) / 2);
+}
+
 }  // namespace
 }  // namespace minenav::mapper
