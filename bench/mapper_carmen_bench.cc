@@ -152,10 +152,8 @@ struct ContourRun {
   std::string refine_reason;
 };
 
-ContourRun RunContourMapper(const minenav::CarmenLog& log, int final_refine_rounds, const std::string& svg_path,
-                            const std::string& title) {
-  mapper::MappingSessionOptions options = mapper::CarmenSessionOptions();
-  options.mapper.refinement.max_rounds = std::max(1, final_refine_rounds);
+ContourRun RunContourMapper(const minenav::CarmenLog& log, const mapper::MappingSessionOptions& options,
+                            int final_refine_rounds, const std::string& svg_path, const std::string& title) {
   mapper::MappingSession session(options);
   ContourRun run;
   const auto start = std::chrono::steady_clock::now();
@@ -218,6 +216,9 @@ int Run(int argc, char** argv) {
   std::string datasets_dir = MINENAV_DATASETS_DIR, only = "intel,fr079,mit-csail,fr-clinic", svg_dir, json_out;
   int max_scans = 0, final_refine_rounds = 0;
   bool baselines = true;
+  // Overrides of carmen_session_options.h for experiments (0 = keep the preset's value).
+  double insert_translation = 0, insert_rotation = 0, final_threshold = 0, max_range = 0, nominal_segment = 0;
+  double discontinuity_angle = -1, initial_threshold = 0, heading_search = -1, heading_margin = -1;
   minenav::ConfigSchema schema("mapper_carmen_bench",
                                "Contour mapper on the CARMEN logs, scored with the Kuemmerle 2009 relations.");
   schema.AddString("datasets", &datasets_dir, "folder with the .clf.bz2 logs and .relations.txt files");
@@ -225,10 +226,40 @@ int Run(int argc, char** argv) {
   schema.AddInt("max_scans", &max_scans, "use only the first N scans of each log (0 = all)", 0, 10000000);
   schema.AddString("svg_dir", &svg_dir, "write <dataset>_contours.svg here (empty = no pictures)");
   schema.AddString("json_out", &json_out, "JSON report");
+  std::string poses_dir;
+  schema.AddString("poses_dir", &poses_dir,
+                   "write <dataset>_poses.csv (utime,x,y,theta: the contour mapper's poses) here, e.g. for "
+                   "`log_tool relations` (empty = none)");
   schema.AddInt("final_refine_rounds", &final_refine_rounds,
                 "concurrent refinement rounds after the last scan (0 = none)", 0, 1000);
   schema.AddBool("baselines", &baselines, "also score raw odometry and iconic scan-to-scan matching");
+  schema.AddDouble("insert_translation", &insert_translation, "m", "override: insert spacing (0 = preset)", 0, 100);
+  schema.AddDouble("insert_rotation", &insert_rotation, "rad", "override: insert turn (0 = preset)", 0, 10);
+  schema.AddDouble("final_threshold", &final_threshold, "m", "override: pose final_threshold (0 = preset)", 0, 10);
+  schema.AddDouble("initial_threshold", &initial_threshold, "m", "override: pose initial_threshold (0 = preset)", 0,
+                   10);
+  schema.AddDouble("heading_search", &heading_search, "rad",
+                   "override: pose heading_search_range (-1 = preset, 0 = off)", -1, 3.14);
+  schema.AddDouble("heading_margin", &heading_margin, "1",
+                   "override: pose heading_search_margin (-1 = preset)", -1, 10);
+  schema.AddDouble("max_range", &max_range, "m", "override: preprocessing max_range (0 = preset)", 0, 100);
+  schema.AddDouble("nominal_segment", &nominal_segment, "m", "override: expansion nominal_segment_length (0 = preset)",
+                   0, 10);
+  schema.AddDouble("discontinuity_angle", &discontinuity_angle, "rad",
+                   "override: preprocessing discontinuity_angle (-1 = preset, 0 = off)", -1, 1.5);
   if (schema.Parse(argc, argv) == minenav::ParseOutcome::kExit) return 0;
+  mapper::MappingSessionOptions options = mapper::CarmenSessionOptions();
+  options.mapper.refinement.max_rounds = std::max(1, final_refine_rounds);
+  if (insert_translation > 0) options.insert_min_translation = insert_translation;
+  if (insert_rotation > 0) options.insert_min_rotation = insert_rotation;
+  if (final_threshold > 0) options.mapper.pose.final_threshold = final_threshold;
+  if (max_range > 0) options.mapper.preprocessing.max_range = max_range;
+  if (initial_threshold > 0) options.mapper.pose.initial_threshold = initial_threshold;
+  if (heading_search >= 0) options.mapper.pose.heading_search_range = heading_search;
+  if (heading_margin >= 0) options.mapper.pose.heading_search_margin = heading_margin;
+  if (nominal_segment > 0) options.mapper.expansion.nominal_segment_length = nominal_segment;
+  if (discontinuity_angle >= 0) options.mapper.preprocessing.discontinuity_angle = discontinuity_angle;
+  if (const std::string why = mapper::ValidateOptions(options); !why.empty()) throw minenav::UsageError(why);
 
   std::vector<const Dataset*> chosen;
   std::stringstream list(only);
@@ -242,6 +273,15 @@ int Run(int argc, char** argv) {
 
   nlohmann::json report = {{"bench", "mapper_carmen_bench"},
                            {"max_scans", max_scans},
+                           {"insert_min_translation_m", options.insert_min_translation},
+                           {"insert_min_rotation_rad", options.insert_min_rotation},
+                           {"pose_final_threshold_m", options.mapper.pose.final_threshold},
+                           {"pose_initial_threshold_m", options.mapper.pose.initial_threshold},
+                           {"pose_heading_search_range_rad", options.mapper.pose.heading_search_range},
+                           {"pose_heading_search_margin", options.mapper.pose.heading_search_margin},
+                           {"max_range_m", options.mapper.preprocessing.max_range},
+                           {"nominal_segment_length_m", options.mapper.expansion.nominal_segment_length},
+                           {"discontinuity_angle_rad", options.mapper.preprocessing.discontinuity_angle},
                            {"final_refine_rounds", final_refine_rounds},
                            {"datasets", nlohmann::json::array()}};
   struct Line {
@@ -311,8 +351,9 @@ int Run(int argc, char** argv) {
       table.push_back({d->name, "iconic scan-to-scan", Fmt(ic), buf});
     }
     const std::string svg = svg_dir.empty() ? "" : svg_dir + "/" + d->name + "_contours.svg";
-    const ContourRun run = RunContourMapper(log, final_refine_rounds, svg, d->name);
+    const ContourRun run = RunContourMapper(log, options, final_refine_rounds, svg, d->name);
     const double peak = PeakRssMiB();
+    if (!poses_dir.empty()) minenav::SavePosesCsv(poses_dir + "/" + d->name + "_poses.csv", run.poses);
     nlohmann::json cj = {{"wall_s", run.wall_s},
                          {"cpu_s", run.cpu_s},
                          {"real_time_factor", duration / run.wall_s},

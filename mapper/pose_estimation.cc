@@ -23,6 +23,12 @@ std::string ValidateOptions(const PoseEstimationOptions& o) {
     why << "step_resolution must be > 0 and gradient_tolerance >= 0";
   else if (o.min_pieces < 1)
     why << "min_pieces must be >= 1, got " << o.min_pieces;
+  else if (!(o.heading_search_range >= 0.0 && o.heading_search_range <= kPi))
+    why << "heading_search_range must be in [0, pi] rad, got " << o.heading_search_range;
+  else if (o.heading_search_range > 0.0 && !(o.heading_search_step > 0.0))
+    why << "heading_search_step must be > 0 rad, got " << o.heading_search_step;
+  else if (!(o.heading_search_margin >= 0.0))
+    why << "heading_search_margin must be >= 0, got " << o.heading_search_margin;
   return why.str();
 }
 
@@ -106,7 +112,35 @@ ScanFit MeasureScanFit(const PreprocessedScan& scan, const Pose2& pose, const Co
   return fit;
 }
 
-PoseEstimationResult EstimatePose(const PreprocessedScan& scan, const Pose2& initial, const ContourMap& map,
+Pose2 SearchHeading(const PreprocessedScan& scan, const Pose2& initial, const ContourMap& map,
+                    const PoseEstimationOptions& o) {
+  if (!(o.heading_search_range > 0.0) || !(o.heading_search_step > 0.0)) return initial;
+  const auto score = [&](double dtheta) {
+    const ScanCorrespondence c = CorrespondScan(scan, Pose2(initial.x, initial.y, initial.theta + dtheta), map,
+                                                o.initial_threshold);
+    return c.num_matched;
+  };
+  const int base = score(0.0);
+  int best = base;
+  double best_dtheta = 0.0;
+  const int steps = static_cast<int>(std::floor(o.heading_search_range / o.heading_search_step + 1e-9));
+  for (int k = 1; k <= steps; ++k)
+    for (const double sign : {-1.0, 1.0}) {
+      const double dtheta = sign * k * o.heading_search_step;
+      const int n = score(dtheta);
+      if (n > best) {
+        best = n;
+        best_dtheta = dtheta;
+      }
+    }
+  if (static_cast<double>(best) <= static_cast<double>(base) * (1.0 + o.heading_search_margin)) return initial;
+  return Pose2(initial.x, initial.y, NormalizeAngle(initial.theta + best_dtheta));
+}
+
+namespace {
+
+// The thesis estimator (4.3.3) from one start.
+PoseEstimationResult EstimateFrom(const PreprocessedScan& scan, const Pose2& initial, const ContourMap& map,
                                   const PoseEstimationOptions& o) {
   PoseEstimationResult out;
   out.pose = initial;
@@ -179,6 +213,24 @@ PoseEstimationResult EstimatePose(const PreprocessedScan& scan, const Pose2& ini
   if (!out.converged) out.reason = "iteration limit";
   out.fit = MeasureScanFit(scan, out.pose, map, out.threshold);
   return out;
+}
+
+}  // namespace
+
+PoseEstimationResult EstimatePose(const PreprocessedScan& scan, const Pose2& initial, const ContourMap& map,
+                                  const PoseEstimationOptions& o) {
+  PoseEstimationResult from_initial = EstimateFrom(scan, initial, map, o);
+  const Pose2 searched = SearchHeading(scan, initial, map, o);
+  if (searched.theta == initial.theta) return from_initial;
+  // The searched heading only seeds a second descent; the final fits decide (more points
+  // matched at the final threshold, then the smaller mean squared distance), so a scan the
+  // initial heading already explains is never pulled away by a look-alike heading.
+  PoseEstimationResult from_searched = EstimateFrom(scan, searched, map, o);
+  const auto better = [](const PoseEstimationResult& a, const PoseEstimationResult& b) {
+    if (a.fit.num_matched != b.fit.num_matched) return a.fit.num_matched > b.fit.num_matched;
+    return a.fit.MeanSquaredDistance() < b.fit.MeanSquaredDistance();
+  };
+  return better(from_searched, from_initial) ? from_searched : from_initial;
 }
 
 }  // namespace minenav::mapper

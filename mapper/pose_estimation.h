@@ -38,6 +38,18 @@ struct PoseEstimationOptions {
   double min_rotation_change = 2e-6;
   // Fewer error pieces than this: no estimate (not enough overlap with the map).
   int min_pieces = 20;
+  // rad; heading search before the line searches (beyond the thesis): headings within
+  // ±heading_search_range of the initial one, every heading_search_step, are scored by how
+  // many scan points find a contour within initial_threshold, and the search starts from the
+  // best (the initial heading unless another matches heading_search_margin more points). The
+  // line searches descend to the nearest minimum; a heading error of 10° moves points 10 m
+  // away by 1.7 m, beyond any threshold that keeps clutter out, so a robot whose odometry
+  // lags its turns (MIT CSAIL's log: 0° then 50° between scans) needs the wider basin.
+  // 0 = off (the thesis's estimator).
+  double heading_search_range = 0.0;
+  double heading_search_step = 0.0349065850398866;  // 2°
+  // Fraction of the initial heading's matched points another heading must add to win.
+  double heading_search_margin = 0.05;
 };
 
 std::string ValidateOptions(const PoseEstimationOptions& options);
@@ -64,6 +76,11 @@ struct PoseEstimationResult {
   double threshold = 0.0;  // m, correspondence threshold at the end
   ScanFit fit;             // at `pose` under `threshold`
 };
+
+// The heading search alone: the initial pose with the best-matching heading (see
+// PoseEstimationOptions::heading_search_range); the initial pose when the search is off.
+Pose2 SearchHeading(const PreprocessedScan& scan, const Pose2& initial_world_T_vehicle, const ContourMap& map,
+                    const PoseEstimationOptions& options);
 
 PoseEstimationResult EstimatePose(const PreprocessedScan& scan, const Pose2& initial_world_T_vehicle,
                                   const ContourMap& map, const PoseEstimationOptions& options = {});

@@ -88,6 +88,46 @@ TEST(PoseEstimationTest, NoisyScanWithinACentimetre) {
   EXPECT_GT(r.fit.MatchedFraction(), 0.9);
 }
 
+TEST(PoseEstimationTest, HeadingSearchWidensTheBasinForLaggingOdometry) {
+  // A 180° SICK-like scan started 12–30° off in heading with a tight first threshold, as
+  // tracking a continuously scanning robot uses: points 10 m away start 2–5 m from their
+  // walls. With the heading search (±32°) every start recovers the truth; the thesis
+  // descent alone (search off) loses at least one of them.
+  const ContourMap map = SmallRoomContours();
+  const Pose2 truth(4.0, 9.5, -0.4);
+  ScanSpec spec;
+  spec.num_points = 720;
+  LadarScan full = MakeScan(SmallRoomWorld(), truth, spec);
+  for (size_t i = 0; i < full.ranges.size(); ++i)  // keep the front half: a 180° scanner
+    if (std::abs(full.Bearing(i)) > kPi / 2.0) full.ranges[i] = std::nanf("");
+  const PreprocessedScan scan = PreprocessScan(full, {});
+  PoseEstimationOptions plain;
+  plain.initial_threshold = 0.5;
+  plain.final_threshold = 0.05;
+  PoseEstimationOptions searching = plain;
+  searching.heading_search_range = DegToRad(32.0);
+  ASSERT_EQ(ValidateOptions(searching), "");
+  int plain_lost = 0;
+  for (const double error_deg : {12.0, -18.0, 24.0, -30.0}) {
+    const Pose2 start(truth.x + 0.05, truth.y - 0.05, truth.theta + DegToRad(error_deg));
+    const Pose2 seeded = SearchHeading(scan, start, map, searching);
+    EXPECT_LT(HeadingDistance(seeded, truth), DegToRad(3.0)) << error_deg << " deg: " << seeded;
+    const PoseEstimationResult r = EstimatePose(scan, start, map, searching);
+    EXPECT_LT(TranslationDistance(r.pose, truth), 1e-3) << error_deg << " deg: " << r.pose << " " << r.reason;
+    EXPECT_LT(HeadingDistance(r.pose, truth), DegToRad(0.01)) << error_deg << " deg";
+    if (HeadingDistance(EstimatePose(scan, start, map, plain).pose, truth) > DegToRad(1.0)) ++plain_lost;
+  }
+  EXPECT_GE(plain_lost, 1) << "the thesis descent alone should lose a start this far off";
+  // Started at the truth, the search changes nothing (the initial heading's fit wins).
+  const PoseEstimationResult at_truth = EstimatePose(scan, truth, map, searching);
+  EXPECT_LT(TranslationDistance(at_truth.pose, truth), 1e-3);
+  EXPECT_LT(HeadingDistance(at_truth.pose, truth), DegToRad(0.01));
+  // Off: SearchHeading returns the start; bad values are refused.
+  EXPECT_EQ(SearchHeading(scan, Pose2(4, 9, 0.3), map, plain).theta, 0.3);
+  searching.heading_search_step = 0.0;
+  EXPECT_NE(ValidateOptions(searching), "");
+}
+
 TEST(PoseEstimationTest, NoOverlapIsReportedNotGuessed) {
   const ContourMap map = SmallRoomContours();
   // A scan of a different room far away: nothing corresponds.
