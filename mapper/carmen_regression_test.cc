@@ -80,8 +80,9 @@ TEST(CarmenRegressionTest, IntelSliceIsMappedWithinTheMeasuredRelationErrors) {
               mapped.rotation.mean, mapped.rotation.std, odometry.translation.mean, odometry.translation.std,
               odometry.rotation.mean, odometry.rotation.std, static_cast<long long>(mapped.n));
 
-  // Measured (800 scans, 77 relations): see mapper/README.md for the figures these bound.
-  EXPECT_LT(mapped.translation.mean, 0.025) << "abs. translational error (m)";
+  // Measured (800 scans, 77 relations): 0.0223 ± 0.0230 m, 0.264 ± 0.380°, 0 refused
+  // (mapper/README.md, "Real data"); raw odometry 0.0177 m, 1.375°.
+  EXPECT_LT(mapped.translation.mean, 0.028) << "abs. translational error (m)";
   EXPECT_LT(mapped.rotation.mean, 0.35) << "abs. rotational error (deg)";
   // Registration to the map removes most of odometry's heading error.
   EXPECT_LT(mapped.rotation.mean, 0.5 * odometry.rotation.mean)
