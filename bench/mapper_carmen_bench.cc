@@ -219,6 +219,7 @@ int Run(int argc, char** argv) {
   // Overrides of carmen_session_options.h for experiments (0 = keep the preset's value).
   double insert_translation = 0, insert_rotation = 0, final_threshold = 0, max_range = 0, nominal_segment = 0;
   double discontinuity_angle = -1, initial_threshold = 0, heading_search = -1, heading_margin = -1;
+  int min_pieces = 0;
   minenav::ConfigSchema schema("mapper_carmen_bench",
                                "Contour mapper on the CARMEN logs, scored with the Kuemmerle 2009 relations.");
   schema.AddString("datasets", &datasets_dir, "folder with the .clf.bz2 logs and .relations.txt files");
@@ -242,6 +243,7 @@ int Run(int argc, char** argv) {
                    "override: pose heading_search_range (-1 = preset, 0 = off)", -1, 3.14);
   schema.AddDouble("heading_margin", &heading_margin, "1",
                    "override: pose heading_search_margin (-1 = preset)", -1, 10);
+  schema.AddInt("min_pieces", &min_pieces, "override: pose min_pieces (0 = preset)", 0, 100000);
   schema.AddDouble("max_range", &max_range, "m", "override: preprocessing max_range (0 = preset)", 0, 100);
   schema.AddDouble("nominal_segment", &nominal_segment, "m", "override: expansion nominal_segment_length (0 = preset)",
                    0, 10);
@@ -257,6 +259,7 @@ int Run(int argc, char** argv) {
   if (initial_threshold > 0) options.mapper.pose.initial_threshold = initial_threshold;
   if (heading_search >= 0) options.mapper.pose.heading_search_range = heading_search;
   if (heading_margin >= 0) options.mapper.pose.heading_search_margin = heading_margin;
+  if (min_pieces > 0) options.mapper.pose.min_pieces = min_pieces;
   if (nominal_segment > 0) options.mapper.expansion.nominal_segment_length = nominal_segment;
   if (discontinuity_angle >= 0) options.mapper.preprocessing.discontinuity_angle = discontinuity_angle;
   if (const std::string why = mapper::ValidateOptions(options); !why.empty()) throw minenav::UsageError(why);
@@ -279,6 +282,7 @@ int Run(int argc, char** argv) {
                            {"pose_initial_threshold_m", options.mapper.pose.initial_threshold},
                            {"pose_heading_search_range_rad", options.mapper.pose.heading_search_range},
                            {"pose_heading_search_margin", options.mapper.pose.heading_search_margin},
+                           {"pose_min_pieces", options.mapper.pose.min_pieces},
                            {"max_range_m", options.mapper.preprocessing.max_range},
                            {"nominal_segment_length_m", options.mapper.expansion.nominal_segment_length},
                            {"discontinuity_angle_rad", options.mapper.preprocessing.discontinuity_angle},
