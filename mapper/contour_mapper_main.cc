@@ -108,6 +108,17 @@ void Declare(ConfigSchema& s, ProcessOptions& p, mapper::MappingSessionOptions& 
               "refuse a scan whose RMS distance to the matched contours stays above this", 0.001, 10.0);
   s.AddDouble("min_overlap_fraction", &mo.min_overlap_fraction, "1",
               "fraction of a scan's points that must match the map", 0.0, 1.0);
+  // Changing world (thesis 4.8; mapper/README.md "Changing worlds").
+  s.AddBool("splice_interior", &mo.expansion.splice_interior,
+            "4.8.1: splice objects that appear beside a mapped wall into its contour (false = static expansion)");
+  s.AddDouble("min_splice_length", &mo.expansion.min_splice_length, "m",
+              "shorter unmatched runs beside a contour's interior are not spliced", 0.0, 100.0);
+  s.AddBool("disappearance", &mo.disappearance.enabled,
+            "4.8.2: remove contour parts the scan sees through (triangles of coverage)");
+  s.AddDouble("beam_divergence", &mo.disappearance.beam_divergence, "rad",
+              "full beam divergence widening each triangle of coverage (Typhoon 0.003, Cyclone 0.004)", 0.0, 0.1);
+  s.AddDouble("min_view_angle", &mo.disappearance.min_view_angle, "rad",
+              "beams meeting a contour more glancingly than this remove nothing from it", 0.0, 1.57);
   s.AddHelpEpilog(
       "Examples:\n"
       "  contour_mapper --log survey.lcm --map-out map.json --poses-out poses.csv --svg-out map.svg   (batch)\n"
