@@ -43,6 +43,7 @@
 #include "common/node/node_runtime.h"
 #include "common/node/scan_odometry_sync.h"
 #include "logger/svg_render.h"
+#include "mapper/carmen_session_options.h"
 #include "mapper/contour_map_io.h"
 #include "mapper/map_checkpoint.h"
 #include "mapper/mapping_session.h"
@@ -59,6 +60,7 @@ struct ProcessOptions {
   std::string map_out;
   std::string poses_out;
   std::string svg_out;
+  std::string preset = "survey";
   std::string checkpoint;
   int checkpoint_every = 0;  // scans; 0 = only at shutdown
   std::string load_map;
@@ -77,6 +79,10 @@ void Declare(ConfigSchema& s, ProcessOptions& p, mapper::MappingSessionOptions& 
   s.AddString("map_out", &p.map_out, "contour-map JSON written at the end (required with --log)");
   s.AddString("poses_out", &p.poses_out, "poses CSV utime,x,y,theta written at the end, one row per inserted or tracked scan");
   s.AddString("svg_out", &p.svg_out, "SVG of the map and the trajectory written at the end");
+  s.AddString("preset", &p.preset,
+              "option set the other flags start from: survey (360-degree scans at stations, thesis 5.2) or\n"
+              "carmen (180-degree SICK scans from a moving robot: the public CARMEN logs, imported with\n"
+              "log_tool import-carmen; mapper/carmen_session_options.h says why each value); command line only");
   s.AddString("checkpoint", &p.checkpoint, "checkpoint file: resumed from when it exists, saved at shutdown");
   s.AddInt("checkpoint_every", &p.checkpoint_every, "also save the checkpoint every this many scans (0 = at shutdown only)",
            0, 1000000);
@@ -337,6 +343,17 @@ void WriteOutputs(const ProcessOptions& p, const mapper::MappingSession& session
                      << (p.svg_out.empty() ? "" : ", " + p.svg_out);
 }
 
+// The value of --preset on the command line ("survey" when absent).
+std::string PresetFromCommandLine(int argc, char** argv) {
+  std::string preset = "survey";
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg.rfind("--preset=", 0) == 0) preset = arg.substr(9);
+    else if (arg == "--preset" && i + 1 < argc) preset = argv[i + 1];
+  }
+  return preset;
+}
+
 int Main(int argc, char** argv) {
   ConfigSchema schema("contour_mapper",
                       "Contour mapper (thesis ch. 4, CLUE): LADAR_SCAN + ODOMETRY -> contour map (CONTOUR_MAP), "
@@ -344,6 +361,15 @@ int Main(int argc, char** argv) {
   NodeRuntime runtime("contour_mapper", schema);
   ProcessOptions p;
   mapper::MappingSessionOptions so;
+  // The preset picks the defaults the other flags then override, so it is read first.
+  p.preset = PresetFromCommandLine(argc, argv);
+  if (p.preset == "carmen") {
+    so = mapper::CarmenSessionOptions();
+    p.final_refinement_rounds = 0;  // the CARMEN figures are tracking without a final refinement
+    p.max_odometry_gap = 5.0;       // Intel's ODOM stream pauses up to 2.3 s while the robot stands
+  } else if (p.preset != "survey") {
+    throw UsageError("--preset must be survey or carmen, got '" + p.preset + "'");
+  }
   Declare(schema, p, so);
   if (schema.Parse(argc, argv) == ParseOutcome::kExit) return 0;
   const bool batch = !runtime.options().log.empty();
