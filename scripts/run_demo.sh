@@ -4,10 +4,13 @@
 #   scripts/run_demo.sh [--stations N] [--seed S] [--speed M/S] [--out DIR]
 #
 # Generates a room-and-pillar mine (thesis 5.2.1), starts vehicle_sim, ladar_driver
-# (Typhoon, 2048 points, 10 Hz), lcm-logger and waypoint_driver inside a private network
-# namespace (nothing leaves this machine), drives the survey route station by station,
-# and leaves in DIR (default out/demo-<UTC time>): the log, the world, the stations, a
-# summary of the log and an SVG of the run to open in a browser.
+# (Typhoon, 2048 points, 10 Hz), the live contour_mapper (thesis ch. 4: it maps while the
+# vehicle drives, inserting a scan every metre and tracking the others), lcm-logger and
+# waypoint_driver inside a private network namespace (nothing leaves this machine), drives
+# the survey route station by station, and leaves in DIR (default out/demo-<UTC time>): the
+# log, the world, the stations, the live contour map (contour_map.json, with a checkpoint of
+# the mapper), a summary of the log, an SVG of the run and an SVG of the contour map
+# rebuilt from the log by the batch mapper (same policy as live).
 #
 # The miner's real cruise speed is 0.076 m/s; the demo drives at --speed (default 1 m/s)
 # so that a 16-station survey takes about two minutes.
@@ -30,7 +33,7 @@ done
 minenav_install_deps
 build="$MINENAV_ROOT/build/release"
 echo "== building in $build"
-minenav_build "$build" -DMINENAV_WERROR=ON -- vehicle_sim ladar_driver waypoint_driver log_tool
+minenav_build "$build" -DMINENAV_WERROR=ON -- vehicle_sim ladar_driver waypoint_driver log_tool contour_mapper
 bin="$build/bin"
 
 out="${out:-$MINENAV_ROOT/out/demo-$(date -u +%Y%m%d-%H%M%S)}"
@@ -44,7 +47,9 @@ head -n $((stations + 1)) "$out/all_stations.csv" > "$out/stations.csv"
 start_pose="$(sed -n 2p "$out/stations.csv")"
 
 # Everything below runs in a fresh network namespace: loopback only, multicast routed on it.
-export out bin speed seed start_pose
+# Scans arrive at 10 Hz while the vehicle drives: insert one per metre or 0.3 rad, track the rest.
+mapper_policy="--insert-min-translation 1.0 --insert-min-rotation 0.3 --final-refinement-rounds 2"
+export out bin speed seed start_pose mapper_policy
 "$MINENAV_ROOT/tests/bus/private_net.sh" --port 7667 -- bash -c '
   set -euo pipefail
   pids=()
@@ -57,6 +62,8 @@ export out bin speed seed start_pose
     2> "$out/vehicle_sim.log" & pids+=($!)
   "$bin/ladar_driver" --world "$out/mine.json" --sensor typhoon --seed "$seed" \
     2> "$out/ladar_driver.log" & pids+=($!)
+  "$bin/contour_mapper" $mapper_policy --checkpoint "$out/mapper.ckpt" \
+    --save-map "$out/contour_map.json" 2> "$out/contour_mapper.log" & pids+=($!)
   sleep 1
   echo "== driving the survey (progress below; Ctrl-C stops)"
   "$bin/waypoint_driver" --stations "$out/stations.csv" --cruise-speed "$speed" \
@@ -68,4 +75,10 @@ echo "== log summary"
 "$bin/log_tool" info "$out/survey.lcm" | tee "$out/survey_info.txt"
 "$bin/log_tool" render "$out/survey.lcm" --world "$out/mine.json" --out "$out/survey.svg" \
   --title "MINENAV survey demo: $stations stations, seed $seed"
-echo "== done: open $out/survey.svg"
+echo "== live mapper: $(grep -E "scans received" "$out/contour_mapper.log" | tail -1 | sed 's/.*info: //')"
+echo "== contour map from the log (batch mapper, same policy)"
+"$bin/contour_mapper" --log "$out/survey.lcm" $mapper_policy --map-out "$out/contour_map_batch.json" \
+  --poses-out "$out/contour_poses.csv" --svg-out "$out/contour_map.svg" 2> "$out/contour_mapper_batch.log" ||
+  { tail -5 "$out/contour_mapper_batch.log" >&2; exit 3; }
+tail -1 "$out/contour_mapper_batch.log"
+echo "== done: open $out/survey.svg and $out/contour_map.svg"
