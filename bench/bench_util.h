@@ -12,6 +12,8 @@
 #include <string>
 #include <vector>
 
+#include "common/config.h"
+
 namespace minenav::bench {
 
 // CPU seconds of the calling thread: the machine is shared, and "on one core here" is what
@@ -71,6 +73,21 @@ inline void WriteJson(const std::string& path, const nlohmann::json& j) {
     std::exit(3);
   }
   out << j.dump(2) << "\n";
+}
+
+// main() of a benchmark: runs `run`, turning a bad flag into one line and exit 2, any other
+// failure into one line and exit 3 (the project's exit codes, common/config.h).
+template <typename Run>
+int RunBenchMain(const char* name, Run run, int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const UsageError& e) {
+    std::cerr << name << ": " << e.what() << "\n";
+    return kExitUsage;
+  } catch (const std::exception& e) {
+    std::cerr << name << ": " << e.what() << "\n";
+    return kExitRuntime;
+  }
 }
 
 inline const char* Verdict(bool met) { return met ? "MET" : "MISSED"; }

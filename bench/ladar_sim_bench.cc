@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/bench_util.h"
 #include "common/config.h"
 #include "common/file_io.h"
 #include "sensor_driver/ladar_simulator.h"
@@ -138,14 +139,4 @@ int Run(int argc, char** argv) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  try {
-    return Run(argc, argv);
-  } catch (const minenav::UsageError& e) {
-    std::cerr << "ladar_sim_bench: " << e.what() << "\n";
-    return minenav::kExitUsage;
-  } catch (const std::exception& e) {
-    std::cerr << "ladar_sim_bench: " << e.what() << "\n";
-    return minenav::kExitRuntime;
-  }
-}
+int main(int argc, char** argv) { return minenav::bench::RunBenchMain("ladar_sim_bench", Run, argc, argv); }

@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/bench_util.h"
 #include "common/config.h"
 #include "common/file_io.h"
 #include "mapper/changing_world_judge.h"
@@ -111,14 +112,4 @@ int Run(int argc, char** argv) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  try {
-    return Run(argc, argv);
-  } catch (const minenav::UsageError& e) {
-    std::cerr << "mapper_dynamic_bench: " << e.what() << "\n";
-    return minenav::kExitUsage;
-  } catch (const std::exception& e) {
-    std::cerr << "mapper_dynamic_bench: " << e.what() << "\n";
-    return minenav::kExitRuntime;
-  }
-}
+int main(int argc, char** argv) { return minenav::bench::RunBenchMain("mapper_dynamic_bench", Run, argc, argv); }

@@ -21,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/bench_util.h"
 #include "common/config.h"
 #include "common/file_io.h"
 #include "mapper/contour_mapper.h"
@@ -183,14 +184,4 @@ int Run(int argc, char** argv) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  try {
-    return Run(argc, argv);
-  } catch (const minenav::UsageError& e) {
-    std::cerr << "mapper_loop_bench: " << e.what() << "\n";
-    return minenav::kExitUsage;
-  } catch (const std::exception& e) {
-    std::cerr << "mapper_loop_bench: " << e.what() << "\n";
-    return minenav::kExitRuntime;
-  }
-}
+int main(int argc, char** argv) { return minenav::bench::RunBenchMain("mapper_loop_bench", Run, argc, argv); }
