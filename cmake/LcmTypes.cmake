@@ -33,6 +33,23 @@ function(minenav_lcm_types)
     file(WRITE "${CMAKE_BINARY_DIR}/no_lcm/minenav/${stem}.hpp"
       "#error \"LCM message type in an algorithm library: convert in the node (common/node/conversions.h).\"\n")
   endforeach()
+  # One more header from all the types: the pre-decode wire check (cmake/lcm_wire_check.py).
+  find_package(Python3 REQUIRED COMPONENTS Interpreter)
+  set(abs_files)
+  foreach(lcm_file IN LISTS ARG_FILES)
+    get_filename_component(abs "${lcm_file}" ABSOLUTE)
+    list(APPEND abs_files "${abs}")
+  endforeach()
+  set(wire_check "${out_dir}/minenav/wire_check.hpp")
+  add_custom_command(
+    OUTPUT "${wire_check}"
+    COMMAND Python3::Interpreter "${CMAKE_SOURCE_DIR}/cmake/lcm_wire_check.py" "${wire_check}" ${abs_files}
+    DEPENDS ${abs_files} "${CMAKE_SOURCE_DIR}/cmake/lcm_wire_check.py"
+    COMMENT "lcm_wire_check.py: minenav/wire_check.hpp"
+    VERBATIM)
+  list(APPEND headers "${wire_check}")
+  file(WRITE "${CMAKE_BINARY_DIR}/no_lcm/minenav/wire_check.hpp"
+    "#error \"LCM message type in an algorithm library: convert in the node (common/node/conversions.h).\"\n")
   add_custom_target(${ARG_TARGET}_gen DEPENDS ${headers})
   add_library(${ARG_TARGET} INTERFACE)
   add_dependencies(${ARG_TARGET} ${ARG_TARGET}_gen)

@@ -1,5 +1,6 @@
 #include "logger/message_catalog.h"
 
+#include <cstdint>
 #include <cstdio>
 
 #include "minenav/contour_map_t.hpp"
@@ -18,6 +19,7 @@
 #include "minenav/task_plan_t.hpp"
 #include "minenav/task_status_t.hpp"
 #include "minenav/vehicle_truth_t.hpp"
+#include "minenav/wire_check.hpp"
 
 namespace minenav {
 
@@ -34,7 +36,18 @@ MessageProbe Probe(const uint8_t* data, size_t size) {
   probe.type_name = QualifiedName<T>();
   probe.known_type = true;
   T msg{};
-  const int used = msg.decode(data, 0, static_cast<int>(size));
+  // The layout first: decode() trusts the payload's array counts (see wire_check.hpp).
+  std::string why;
+  if (size > static_cast<size_t>(INT32_MAX) || !wire::Check<T>(data, static_cast<int64_t>(size), &why)) {
+    probe.error = "truncated or malformed " + probe.type_name + " payload (" + std::to_string(size) + " bytes): " + why;
+    return probe;
+  }
+  int used = -1;
+  try {
+    used = msg.decode(data, 0, static_cast<int>(size));
+  } catch (const std::exception&) {
+    used = -1;
+  }
   if (used < 0) {
     probe.error = "truncated or malformed " + probe.type_name + " payload (" + std::to_string(size) + " bytes)";
     return probe;

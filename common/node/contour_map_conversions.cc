@@ -60,8 +60,13 @@ contour_map_t ContourMapToLcm(const ContourMapMessage& map, int compress_above) 
 
 ContourMapMessage ContourMapFromLcm(const contour_map_t& m) {
   if (m.encoding == contour_map_t::ENCODING_ZLIB) {
-    if (m.uncompressed_size <= 0 || m.uncompressed_size > (256 << 20))
-      throw InputError("contour map: bad uncompressed_size " + std::to_string(m.uncompressed_size));
+    // zlib's deflate cannot shrink data by more than about 1032:1, so a larger claimed
+    // size is a lie (a 75-byte packet must not make us allocate 256 MB).
+    const int64_t most_inflated = int64_t{1032} * static_cast<int64_t>(m.payload.size()) + 64;
+    if (m.uncompressed_size <= 0 || m.uncompressed_size > kMaxUncompressedContourMap ||
+        m.uncompressed_size > most_inflated)
+      throw InputError("contour map: bad uncompressed_size " + std::to_string(m.uncompressed_size) + " for " +
+                       std::to_string(m.payload.size()) + " compressed bytes");
     std::vector<uint8_t> raw(static_cast<size_t>(m.uncompressed_size));
     uLongf size = static_cast<uLongf>(raw.size());
     if (uncompress(raw.data(), &size, m.payload.data(), static_cast<uLong>(m.payload.size())) != Z_OK ||

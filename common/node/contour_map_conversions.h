@@ -29,6 +29,10 @@ struct ContourMapMessage {
 // Default threshold for compression (bytes of the plain encoding).
 inline constexpr int kContourMapCompressAbove = 32 * 1024;
 
+// Largest plain encoding a compressed CONTOUR_MAP may inflate to (bytes). A 1 km² mine
+// mapped at 0.5 m segments is a few MB.
+inline constexpr int64_t kMaxUncompressedContourMap = 64 << 20;
+
 // Plain when the plain encoding is at most compress_above bytes, else compressed.
 contour_map_t ContourMapToLcm(const ContourMapMessage& map, int compress_above = kContourMapCompressAbove);
 // Either encoding; validates sizes, finiteness and the compressed payload.

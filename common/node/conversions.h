@@ -18,6 +18,7 @@
 #include "minenav/pose2d_t.hpp"
 #include "minenav/pose_estimate_t.hpp"
 #include "minenav/vehicle_truth_t.hpp"
+#include "minenav/wire_check.hpp"
 
 namespace minenav {
 
@@ -44,13 +45,24 @@ line_map_t SegmentsToLcm(const std::vector<Segment>& segments, int64_t utime, in
 std::vector<Segment> SegmentsFromLcm(const line_map_t& m);
 
 // Decodes a raw LCM payload into T. Returns false and sets *error (one line naming the
-// channel and the reason: wrong fingerprint, truncated) when it does not decode.
+// channel and the reason: wrong fingerprint, truncated, a count that does not fit the
+// payload) when it does not decode.
+//
+// The payload's layout is checked first (minenav/wire_check.hpp, generated from the .lcm
+// files): lcm-gen's decode() trusts the array counts in the payload, so a hostile count
+// makes it read past the buffer (LCM 1.3.1 overflows `sizeof(T) * count` in an int) or
+// zero-fill gigabytes before it notices. After the check, decode() allocates at most a
+// few times the payload's size.
 template <typename T>
 bool DecodeMessage(const void* data, int size, const std::string& channel, T* out, std::string* error) {
   *out = T{};
+  std::string why;
+  if (data == nullptr || size < 0 || !wire::Check<T>(data, size, &why)) {
+    *error = "channel " + channel + ": cannot decode " + std::to_string(size) + " bytes as " +
+             T::getTypeName() + " (" + (why.empty() ? "no payload" : why) + ")";
+    return false;
+  }
   int used = -1;
-  // Generated decoders size arrays from the count in the payload before checking it:
-  // a corrupt negative count throws std::length_error, which must not escape.
   try {
     used = out->decode(data, 0, size);
   } catch (const std::exception&) {
