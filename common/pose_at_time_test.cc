@@ -39,6 +39,17 @@ TEST(PoseAtTimeTest, ExactInterpolatedAndEnds) {
   EXPECT_FALSE(PoseAtTime(std::deque<OdometryReading>{}, 0, 1'000'000));
 }
 
+// Issue 11, item 5: a scan stamped INT64_MIN overflowed `after->utime - utime` and got the
+// first reading's pose although it is 292,000 years before it.
+TEST(PoseAtTimeTest, GapLimitsHoldForExtremeStamps) {
+  const std::vector<StampedPose> poses = {{-5, {0, 0, 0}}, {1'000'000, {1, 0, 0}}};
+  EXPECT_FALSE(PoseAtTime(poses, INT64_MIN, 1'000'000));
+  EXPECT_FALSE(PoseAtTime(poses, INT64_MAX, 1'000'000));
+  const std::vector<StampedPose> extremes = {{INT64_MIN, {0, 0, 0}}, {INT64_MAX, {1, 0, 0}}};
+  EXPECT_FALSE(PoseAtTime(extremes, 0, 1'000'000));
+  EXPECT_EQ(TimeGap(INT64_MAX, INT64_MIN), UINT64_MAX);
+}
+
 TEST(PoseAtTimeTest, WorksOnStampedPosesAndFindsExactStamps) {
   const std::vector<StampedPose> poses = {{10, {0, 0, 0}}, {20, {1, 0, 0}}};
   EXPECT_NEAR(PoseAtTime(poses, 15, 10)->x, 0.5, 1e-12);

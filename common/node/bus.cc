@@ -25,6 +25,26 @@ void Bus::ReportBad(std::string_view channel, const std::string& error) {
   }
 }
 
+bool Bus::AcceptStamp(const RawMessage& raw, int64_t stamp, const char* type_name) {
+  if (max_stamp_lead_us_ <= 0) return true;
+  const bool negative = stamp < 0;
+  // Written so that no subtraction can overflow whatever the two times are.
+  const bool too_late = !negative && raw.utime >= 0 && stamp - raw.utime > max_stamp_lead_us_;
+  if (!negative && !too_late) return true;
+  ++counters_.stamps_rejected;
+  std::string why = "channel " + std::string(raw.channel) + ": " + type_name + " stamped " + std::to_string(stamp) +
+                    " us rejected: ";
+  if (negative) {
+    why += "negative time";
+  } else {
+    why += std::to_string((stamp - raw.utime) / 1000) + " ms after it was received (window " +
+           std::to_string(max_stamp_lead_us_ / 1000) + " ms, --max-stamp-lead)";
+  }
+  last_stamp_rejection_ = why;
+  ReportBad(raw.channel, why);
+  return false;
+}
+
 void Bus::CountPublished(bool ok, const std::string& channel) {
   if (ok) {
     ++counters_.published;

@@ -48,6 +48,7 @@ struct BusCounters {
   int64_t messages_bad = 0;    // messages that did not decode or were rejected
   int64_t published = 0;       // messages published
   int64_t publish_errors = 0;  // publications the transport refused
+  int64_t stamps_rejected = 0; // of messages_bad: rejected for their utime (see AcceptStamp)
 };
 
 class Bus {
@@ -73,6 +74,20 @@ class Bus {
   // every 1000th, so a stream of garbage cannot flood the log).
   void ReportBad(std::string_view channel, const std::string& error);
   const BusCounters& counters() const { return counters_; }
+  // Why the latest message was rejected for its timestamp ("" if none yet), for HEARTBEAT.
+  const std::string& last_stamp_rejection() const { return last_stamp_rejection_; }
+
+  // The timestamp window (DESIGN.md "The bus"; common/node/README.md "Limits"). A message
+  // whose utime is negative, or more than max_lead_us after the time it was received (the
+  // receive time live; the event's timestamp in a log), is rejected before its handler
+  // runs: a scan stamped INT64_MAX would otherwise hold up the scan/odometry pairing, and
+  // odometry stamped in the far future would reset its history. Stamps in the past are
+  // allowed: lcm-logplayer replays old logs live. 0 (the default of a bare bus) = no check;
+  // NodeRuntime sets it from --max-stamp-lead.
+  void set_max_stamp_lead_us(int64_t max_lead_us) { max_stamp_lead_us_ = max_lead_us; }
+  int64_t max_stamp_lead_us() const { return max_stamp_lead_us_; }
+  // True when `stamp` passes the window; otherwise counts and logs it as bad and returns false.
+  bool AcceptStamp(const RawMessage& raw, int64_t stamp, const char* type_name);
   // Bad messages per channel, for tests and for log_tool info.
   const std::map<std::string, int64_t, std::less<>>& bad_by_channel() const { return bad_by_channel_; }
 
@@ -82,6 +97,8 @@ class Bus {
  private:
   BusCounters counters_;
   std::map<std::string, int64_t, std::less<>> bad_by_channel_;
+  std::string last_stamp_rejection_;
+  int64_t max_stamp_lead_us_ = 0;
 };
 
 // Encodes and publishes a generated LCM message.
@@ -93,8 +110,9 @@ bool Publish(Bus& bus, const std::string& channel, const T& msg) {
 
 // Subscribes with decoding. `handler` is callable as handler(const T&) or
 // handler(const RawMessage&, const T&) (to see the channel or receive time).
-// A message that fails to decode, or whose handler throws (FromLcm throws InputError
-// for invalid content), is counted in messages_bad and logged with its channel.
+// A message that fails to decode, whose utime is outside the bus's timestamp window
+// (AcceptStamp), or whose handler throws (FromLcm throws InputError for invalid content),
+// is counted in messages_bad and logged with its channel.
 template <typename T, typename Handler>
 void Subscribe(Bus& bus, const std::string& channel, Handler handler) {
   static_assert(std::is_invocable_v<Handler&, const T&> ||
@@ -107,6 +125,9 @@ void Subscribe(Bus& bus, const std::string& channel, Handler handler) {
     if (!DecodeMessage(raw.data, raw.size, channel_name, &msg, &error)) {
       bus.ReportBad(raw.channel, error);
       return;
+    }
+    if constexpr (requires { msg.utime; }) {
+      if (!bus.AcceptStamp(raw, msg.utime, T::getTypeName())) return;
     }
     try {
       if constexpr (std::is_invocable_v<Handler&, const RawMessage&, const T&>) {

@@ -85,5 +85,68 @@ TEST(ScanOdometrySyncTest, TooManyWaitingScansDropTheOldest) {
   EXPECT_EQ(ready.front().scan.utime, 2);
 }
 
+// Issue 11, item 5: odometry stamped INT64_MAX at 20 Hz between real readings cleared the
+// history every time and most real scans were skipped as "no odometry".
+TEST(ScanOdometrySyncTest, LoneFarOffReadingsNeitherResetNorBlockTheHistory) {
+  ScanOdometrySync sync;
+  int with_odometry = 0, scans = 0;
+  for (int k = 0; k < 200; ++k) {
+    const int64_t t = 1'700'000'000'000'000 + int64_t{k} * 50'000;  // wall-clock time, 2023
+    EXPECT_TRUE(sync.AddOdometry(Odo(t, 0.05 * k)));
+    OdometryReading hostile = Odo(k % 2 == 0 ? INT64_MAX : 0, 99.0);
+    EXPECT_TRUE(sync.AddOdometry(hostile)) << "a lone far-off reading must not clear the history";
+    if (k % 5 == 0) {
+      sync.AddScan(Scan(t - 25'000));
+      for (const SyncedScan& s : sync.TakeReady()) {
+        ++scans;
+        with_odometry += s.odometry.has_value();
+        if (s.odometry) {
+          EXPECT_LT(s.odometry->x, 10.0);  // never the hostile pose
+        }
+      }
+    }
+  }
+  EXPECT_EQ(scans, 40);
+  EXPECT_EQ(with_odometry, 40);
+  EXPECT_GE(sync.rejected_odometry(), 199);
+  EXPECT_GT(sync.odometry().size(), 100u);
+}
+
+TEST(ScanOdometrySyncTest, AFarJumpFollowedByOrderedReadingsIsARestart) {
+  ScanOdometrySync sync;
+  for (int k = 0; k < 10; ++k) sync.AddOdometry(Odo(500'000'000 + k * 50'000, 1.0));
+  // A log replayed from its start: far back, then in order.
+  EXPECT_TRUE(sync.AddOdometry(Odo(1'000'000, 0.0)));
+  EXPECT_TRUE(sync.AddOdometry(Odo(1'050'000, 0.1)));
+  EXPECT_FALSE(sync.AddOdometry(Odo(1'100'000, 0.2)));  // confirmed: history restarted
+  ASSERT_EQ(sync.odometry().size(), 3u);
+  EXPECT_EQ(sync.odometry().front().utime, 1'000'000);
+  EXPECT_EQ(sync.rejected_odometry(), 0);
+}
+
+// Issue 11, item 5: a scan stamped INT64_MAX held up every scan behind it for ~9 s.
+TEST(ScanOdometrySyncTest, AScanStampedFarAheadDoesNotBlockTheOthers) {
+  ScanOdometrySync sync;
+  sync.AddOdometry(Odo(1'000'000, 0.0));
+  sync.AddScan(Scan(INT64_MAX));
+  sync.AddScan(Scan(1'020'000));
+  sync.AddOdometry(Odo(1'050'000, 1.0));
+  const auto ready = sync.TakeReady();
+  ASSERT_EQ(ready.size(), 2u);
+  EXPECT_FALSE(ready[0].odometry);  // released without odometry: the caller skips it
+  ASSERT_TRUE(ready[1].odometry);
+  EXPECT_NEAR(ready[1].odometry->x, 0.4, 1e-9);
+}
+
+TEST(ScanOdometrySyncTest, AScanStampedInt64MinGetsNoOdometry) {
+  ScanOdometrySync sync;
+  sync.AddOdometry(Odo(1'000'000, 0.0));
+  sync.AddOdometry(Odo(1'050'000, 1.0));
+  sync.AddScan(Scan(INT64_MIN));
+  const auto ready = sync.TakeReady();
+  ASSERT_EQ(ready.size(), 1u);
+  EXPECT_FALSE(ready[0].odometry) << "the gap limit must hold for any stamp";
+}
+
 }  // namespace
 }  // namespace minenav
