@@ -36,7 +36,7 @@ const LogEvent* LogBus::Fill() {
     if (pending_ == nullptr) {
       at_end_ = true;
       if (reader_.trailing_bytes() > 0) {
-        MINENAV_LOG(kWarn) << reader_.path() << ": " << reader_.trailing_bytes()
+        MINENAV_LOG(kWarn) << reader_.truncation() << ": " << reader_.trailing_bytes()
                            << " bytes after the last complete event ignored (log cut short?)";
       }
     }
@@ -76,6 +76,12 @@ int LogBus::HandleFor(int64_t /*timeout_us*/) { return DispatchNext() ? 1 : 0; }
 
 void LogBus::Close() {
   if (output_ != nullptr) output_->Close();
+}
+
+void LogBus::CloseIncomplete() {
+  if (output_ == nullptr) return;
+  output_->CloseAsPartial();
+  MINENAV_LOG(kWarn) << "interrupted: publications so far kept in " << output_->path() << ".partial";
 }
 
 }  // namespace minenav

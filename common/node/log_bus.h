@@ -45,6 +45,9 @@ class LogBus final : public Bus {
 
   // Closes the output log (renaming it into place). Call once the run succeeded.
   void Close();
+  // Closes the output log and leaves it as PATH.partial (the run was interrupted): what
+  // was published is kept, under a name that says it is not complete.
+  void CloseIncomplete();
 
   int64_t events_read() const { return reader_.events_read(); }
   int64_t events_dispatched() const { return events_dispatched_; }
