@@ -1,5 +1,7 @@
 #include "common/config.h"
 
+#include <regex.h>
+
 #include <algorithm>
 #include <cmath>
 #include <fstream>
@@ -184,8 +186,26 @@ void ConfigSchema::AddChannel(const std::string& key, std::string* value, const 
   auto inner = e.set;
   e.set = [inner, key](const std::string& text, const std::string& where) {
     if (Trim(text).empty()) throw UsageError(where + ": " + key + " must name a channel");
+    try {
+      ValidateChannelPattern(Trim(text));
+    } catch (const UsageError& error) {
+      throw UsageError(where + ": " + key + ": " + error.what());
+    }
     inner(text, where);
   };
+}
+
+void ValidateChannelPattern(const std::string& channel) {
+  if (channel.empty()) throw UsageError("channel name is empty");
+  if (channel.size() > kMaxChannelNameLength)
+    throw UsageError("channel '" + channel.substr(0, 80) + "' is longer than LCM's " +
+                     std::to_string(kMaxChannelNameLength) + " characters");
+  // LCM compiles "^pattern$" as a POSIX extended expression; so do we.
+  regex_t compiled;
+  const std::string anchored = "^" + channel + "$";
+  if (regcomp(&compiled, anchored.c_str(), REG_NOSUB | REG_EXTENDED) != 0)
+    throw UsageError("channel pattern '" + channel + "' is not a valid regular expression");
+  regfree(&compiled);
 }
 
 void ConfigSchema::SetPositional(const std::string& usage, size_t min_count, size_t max_count) {

@@ -26,8 +26,18 @@ class UsageError : public std::runtime_error {
 
 enum class ParseOutcome { kRun, kExit };
 
+// LCM's longest channel name (LCM_MAX_CHANNEL_NAME_LENGTH in 1.3.1).
+inline constexpr size_t kMaxChannelNameLength = 63;
+// Throws UsageError unless `channel` is a channel name or pattern LCM accepts (a POSIX
+// extended regular expression of at most kMaxChannelNameLength characters). In 1.3.1 an
+// invalid pattern makes LCM hand back a subscription whose next use crashes.
+void ValidateChannelPattern(const std::string& channel);
+
 inline constexpr int kExitUsage = 2;    // bad flag, config or input file
 inline constexpr int kExitRuntime = 3;  // failure while running
+// Stopped by SIGINT/SIGTERM before the work was done (a batch run before the end of its
+// log): what was done is kept under names that say partial (FILE.partial).
+inline constexpr int kExitInterrupted = 130;
 
 class ConfigSchema {
  public:

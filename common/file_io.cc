@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <nlohmann/json.hpp>
@@ -18,6 +19,22 @@ std::string ReadFile(const std::string& path) {
   ss << in.rdbuf();
   if (in.bad()) throw InputError(path + ": read error");
   return ss.str();
+}
+
+void CheckOutputIsNotInput(const std::string& what, const std::string& output,
+                           const std::vector<std::string>& inputs) {
+  if (output.empty()) return;
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  for (const std::string& input : inputs) {
+    if (input.empty()) continue;
+    const bool same = output == input || (fs::exists(output, ec) && fs::exists(input, ec) &&
+                                          fs::equivalent(output, input, ec));
+    const bool same_name = fs::weakly_canonical(output, ec) == fs::weakly_canonical(input, ec);
+    if (same || (!ec && same_name))
+      throw InputError(what + " " + output + " is an input of this run (" + input +
+                       "): refusing to overwrite it");
+  }
 }
 
 void WriteFileAtomically(const std::string& path, const std::string& content) {

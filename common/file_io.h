@@ -21,6 +21,11 @@ class InputError : public std::runtime_error {
 };
 
 std::string ReadFile(const std::string& path);
+// Throws InputError when `output` names the same file as one of `inputs` (also through a
+// different spelling of the path or a link), so a run can never overwrite what it reads.
+// `what` names the output option in the message, e.g. "--map-out". Empty paths are ignored.
+void CheckOutputIsNotInput(const std::string& what, const std::string& output,
+                           const std::vector<std::string>& inputs);
 // Writes `content` to path.tmp.<pid> and renames it onto `path`.
 void WriteFileAtomically(const std::string& path, const std::string& content);
 

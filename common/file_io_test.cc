@@ -75,5 +75,21 @@ TEST(FileIoTest, AtomicWriteLeavesNoTemporary) {
   std::filesystem::remove_all(dir);
 }
 
+TEST(FileIoTest, OutputThatIsAnInputIsRefused) {
+  const auto dir = std::filesystem::temp_directory_path() / "minenav_fileio_same_test";
+  std::filesystem::create_directories(dir);
+  const std::string log = (dir / "run.lcm").string();
+  WriteFileAtomically(log, "data");
+  EXPECT_THROW(CheckOutputIsNotInput("--map-out", log, {log}), InputError);
+  // Another spelling of the same file.
+  EXPECT_THROW(CheckOutputIsNotInput("--map-out", (dir / "." / "run.lcm").string(), {log}), InputError);
+  std::filesystem::create_symlink(log, dir / "link.lcm");
+  EXPECT_THROW(CheckOutputIsNotInput("--json-out", (dir / "link.lcm").string(), {"", log}), InputError);
+  EXPECT_NO_THROW(CheckOutputIsNotInput("--map-out", (dir / "map.json").string(), {log}));
+  EXPECT_NO_THROW(CheckOutputIsNotInput("--map-out", "", {log}));
+  EXPECT_EQ(ReadFile(log), "data");
+  std::filesystem::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace minenav

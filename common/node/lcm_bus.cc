@@ -6,6 +6,7 @@
 #include <lcm/lcm-cpp.hpp>
 #include <stdexcept>
 
+#include "common/config.h"
 #include "common/log.h"
 
 namespace minenav {
@@ -47,12 +48,17 @@ LcmBus::LcmBus(const std::string& url, int queue_capacity)
 LcmBus::~LcmBus() = default;
 
 bool LcmBus::Publish(const std::string& channel, const void* data, int size) {
+  if (channel.empty() || channel.size() > kMaxChannelNameLength) {
+    CountPublished(false, channel);
+    return false;
+  }
   const bool ok = lcm_->publish(channel, data, static_cast<unsigned int>(size)) == 0;
   CountPublished(ok, channel);
   return ok;
 }
 
 void LcmBus::Subscribe(const std::string& channel, RawHandler handler) {
+  ValidateChannelPattern(channel);  // an invalid one would crash inside LCM
   auto sub = std::make_unique<Subscription>();
   sub->bus = this;
   sub->handler = std::move(handler);

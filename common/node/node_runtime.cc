@@ -18,9 +18,19 @@ namespace minenav {
 
 namespace {
 
-volatile std::sig_atomic_t g_stop_signal = 0;
+std::atomic<int> g_stop_signal{0};
+static_assert(std::atomic<int>::is_always_lock_free, "the signal handler writes it");
 
-extern "C" void OnStopSignal(int /*signal*/) { g_stop_signal = 1; }
+// The first SIGINT/SIGTERM asks every loop to stop (outputs are written, the checkpoint
+// saved); a second one, for a user who cannot wait, ends the process at once.
+extern "C" void OnStopSignal(int /*signal*/) {
+  if (g_stop_signal.exchange(1) != 0) {
+    static const char kMessage[] = "second stop signal: exiting now, without writing outputs\n";
+    const ssize_t ignored = ::write(2, kMessage, sizeof(kMessage) - 1);
+    (void)ignored;
+    ::_exit(kExitInterrupted);
+  }
+}
 
 // Longest a live loop waits before looking at the stop flag again.
 constexpr int64_t kMaxWaitUs = 100'000;
@@ -50,7 +60,7 @@ void NodeRuntime::Register(ConfigSchema& schema) {
                    "batch mode: read this LCM log instead of the bus, as fast as possible");
   schema.AddString("log_out", &options_.log_out, "batch mode: write publications to this LCM log");
   schema.AddDouble("heartbeat_period", &options_.heartbeat_period, "s",
-                   "time between HEARTBEAT messages; 0 = none", 0.0, 3600.0);
+                   "time between HEARTBEAT messages (0, or at least 0.01); 0 = none", 0.0, 3600.0);
   schema.AddString("log_level", &options_.log_level, "least severe message printed on stderr",
                    {"debug", "info", "warn", "error"});
   schema.AddInt("queue_capacity", &options_.queue_capacity,
@@ -59,6 +69,10 @@ void NodeRuntime::Register(ConfigSchema& schema) {
                    "stop after this much clock time; 0 = until SIGINT/SIGTERM or end of log", 0.0,
                    1e9);
   schema.AddString("instance", &options_.instance, "instance name in HEARTBEAT (several copies)");
+  schema.AddDouble("max_stamp_lead", &options_.max_stamp_lead, "s",
+                   "reject messages stamped more than this after they were received, or before 0 "
+                   "(clock skew allowance); 0 = no check",
+                   0.0, 86400.0);
   schema.AddChannel("heartbeat_channel", &options_.heartbeat_channel, "publishes", "heartbeat_t",
                     "liveness, message counts and state");
 }
@@ -79,14 +93,19 @@ void NodeRuntime::Start() {
     throw UsageError("--log-out is for batch mode: it needs --log");
   if (!options_.log.empty() && !options_.log_out.empty() && options_.log == options_.log_out)
     throw UsageError("--log-out must differ from --log");
-  if (options_.heartbeat_period < 0 || !std::isfinite(options_.heartbeat_period))
-    throw UsageError("--heartbeat-period must be >= 0");
+  if (options_.heartbeat_period < 0 || !std::isfinite(options_.heartbeat_period) ||
+      (options_.heartbeat_period > 0 && options_.heartbeat_period < kMinHeartbeatPeriod))
+    throw UsageError("--heartbeat-period must be 0 (none) or at least " + std::to_string(kMinHeartbeatPeriod).substr(0, 4) +
+                     " s, got " + std::to_string(options_.heartbeat_period));
+  if (options_.max_stamp_lead < 0 || !std::isfinite(options_.max_stamp_lead))
+    throw UsageError("--max-stamp-lead must be >= 0");
   if (!options_.log.empty()) {
     auto log_bus = std::make_unique<LogBus>(options_.log, batch_clock_);
     if (!options_.log_out.empty()) log_bus->SetOutputLog(options_.log_out);
     log_bus_ = log_bus.get();
     clock_ = &batch_clock_;
     bus_ = std::move(log_bus);
+    bus_->set_max_stamp_lead_us(SecondsToUs(options_.max_stamp_lead));
     MINENAV_LOG(kInfo) << "batch over " << options_.log
                        << (options_.log_out.empty() ? "" : ", writing " + options_.log_out);
   } else {
@@ -94,6 +113,7 @@ void NodeRuntime::Start() {
     if (url.find("://") == std::string::npos)
       throw UsageError("LCM URL '" + url + "' is not a URL (e.g. " + kDefaultLcmUrl + ")");
     bus_ = std::make_unique<LcmBus>(url, options_.queue_capacity);
+    bus_->set_max_stamp_lead_us(SecondsToUs(options_.max_stamp_lead));
     MINENAV_LOG(kDebug) << "LCM on " << url;
   }
   if (options_.heartbeat_period > 0) {
@@ -137,7 +157,9 @@ void NodeRuntime::SetStatus(int8_t state, std::string message) {
 
 void NodeRuntime::OnShutdown(std::function<void()> hook) { shutdown_hooks_.push_back(std::move(hook)); }
 
-bool NodeRuntime::StopRequested() const { return stop_requested_ || g_stop_signal != 0; }
+bool NodeRuntime::StopRequested() const { return stop_requested_ || g_stop_signal.load() != 0; }
+
+bool NodeRuntime::StopSignalled() { return g_stop_signal.load() != 0; }
 
 void NodeRuntime::InstallSignalHandlers() {
   struct sigaction action {};
@@ -148,7 +170,7 @@ void NodeRuntime::InstallSignalHandlers() {
   sigaction(SIGTERM, &action, nullptr);
 }
 
-void NodeRuntime::ClearStopSignal() { g_stop_signal = 0; }
+void NodeRuntime::ClearStopSignal() { g_stop_signal.store(0); }
 
 void NodeRuntime::PublishHeartbeat(int8_t state) {
   if (bus_ == nullptr) return;
@@ -162,6 +184,17 @@ void NodeRuntime::PublishHeartbeat(int8_t state) {
   hb.message = status_message_;
   hb.messages_in = bus_->counters().messages_in;
   hb.messages_bad = bus_->counters().messages_bad;
+  // Messages rejected for their timestamps since the last heartbeat turn an OK into a
+  // WARN that says so: a stream stamped outside the window is a clock or sender fault a
+  // supervisor must see (other bad messages show in messages_bad).
+  const int64_t new_stamp_rejections = bus_->counters().stamps_rejected - stamps_rejected_at_last_heartbeat_;
+  stamps_rejected_at_last_heartbeat_ = bus_->counters().stamps_rejected;
+  if (new_stamp_rejections > 0 && state != heartbeat_t::STOPPING) {
+    if (hb.state == heartbeat_t::OK) hb.state = heartbeat_t::WARN;
+    hb.message += std::string(hb.message.empty() ? "" : "; ") + std::to_string(new_stamp_rejections) +
+                  " message(s) rejected for their timestamps since the last heartbeat (last: " +
+                  bus_->last_stamp_rejection() + ")";
+  }
   Publish(*bus_, options_.heartbeat_channel, hb);
 }
 
@@ -234,9 +267,22 @@ int NodeRuntime::RunLive() {
 
 int NodeRuntime::RunBatch() {
   const int64_t run_for_us = SecondsToUs(options_.run_for);
+  bool reached_end = false;
   while (!StopRequested()) {
-    const std::optional<int64_t> ts = log_bus_->PeekTimestamp();
-    if (!ts) break;
+    std::optional<int64_t> ts;
+    try {
+      ts = log_bus_->PeekTimestamp();
+    } catch (const InputError& e) {
+      // A damaged log: what was read so far is kept as partial, and the run fails.
+      interrupted_ = true;
+      MINENAV_LOG(kError) << e.what() << " (after " << log_bus_->events_dispatched()
+                          << " events: outputs are kept as partial)";
+      return kExitUsage;
+    }
+    if (!ts) {
+      reached_end = true;
+      break;
+    }
     const int64_t t = std::max(batch_clock_.NowUtime(), *ts);
     if (!started_) {
       batch_clock_.Set(t);
@@ -246,6 +292,12 @@ int NodeRuntime::RunBatch() {
     FireDueTimers(t);
     batch_clock_.Set(t);
     log_bus_->DispatchNext();
+  }
+  if (!reached_end && StopSignalled()) {
+    interrupted_ = true;
+    MINENAV_LOG(kWarn) << "interrupted after " << log_bus_->events_dispatched() << " of the log's events ("
+                       << bus_->counters().messages_in << " handled): outputs are kept as partial";
+    return kExitInterrupted;
   }
   MINENAV_LOG(kInfo) << "batch done: " << log_bus_->events_dispatched() << " events, "
                      << bus_->counters().messages_in << " handled, " << bus_->counters().messages_bad
@@ -275,7 +327,13 @@ void NodeRuntime::Shutdown() {
   shut_down_ = true;
   for (auto& hook : shutdown_hooks_) hook();
   if (options_.heartbeat_period > 0) PublishHeartbeat(heartbeat_t::STOPPING);
-  if (log_bus_ != nullptr) log_bus_->Close();
+  if (log_bus_ != nullptr) {
+    if (interrupted_) {
+      log_bus_->CloseIncomplete();
+    } else {
+      log_bus_->Close();
+    }
+  }
 }
 
 int RunNodeMain(const std::string& process, const std::function<int()>& body) {

@@ -39,7 +39,13 @@ struct NodeOptions {
   double run_for = 0.0;              // s of clock time to run; 0 = until stopped / end of log
   std::string instance;              // distinguishes several copies of a process
   std::string heartbeat_channel = "HEARTBEAT";
+  // s: messages stamped more than this after they were received (or before 0) are
+  // rejected as bad (Bus::AcceptStamp); covers clock skew between hosts. 0 = no check.
+  double max_stamp_lead = 10.0;
 };
+
+// Shortest HEARTBEAT period accepted (s): a heartbeat carries counters, not data.
+inline constexpr double kMinHeartbeatPeriod = 0.01;
 
 class NodeRuntime {
  public:
@@ -81,18 +87,27 @@ class NodeRuntime {
   void OnShutdown(std::function<void()> hook);
 
   // Runs until the end of the log (batch), SIGINT/SIGTERM, RequestStop() or --run-for,
-  // then shuts down. Returns the exit code (0). Exceptions from handlers are counted as
+  // then shuts down. Returns the exit code (0, or kExitInterrupted for a batch run stopped
+  // by a signal before the end of its log). Exceptions from handlers are counted as
   // bad messages; an exception from a timer publishes an ERROR heartbeat and propagates.
   int Run();
   // One pass of the live loop: fires due timers, then handles messages for at most
   // max_wait_us (less if a timer is due sooner). Returns the messages dispatched.
   int SpinOnce(int64_t max_wait_us);
   // Publishes a STOPPING heartbeat, runs the shutdown hooks and closes the batch output
-  // log. Idempotent; Run() calls it.
+  // log (left as FILE.partial when interrupted()). Idempotent; Run() calls it.
   void Shutdown();
 
   void RequestStop() { stop_requested_ = true; }
   bool StopRequested() const;
+  // True once a batch run ended before the end of its log (set before the shutdown hooks
+  // run, so they can write what was done under names that say partial): SIGINT/SIGTERM
+  // (Run() returns kExitInterrupted), or damage in the log (Run() returns kExitUsage
+  // after one line naming the byte offset). Live, a signal is the normal way to stop.
+  bool interrupted() const { return interrupted_; }
+  // True once SIGINT or SIGTERM arrived (any runtime in the process). Safe to poll from a
+  // worker thread or to hand to a long computation as its "should stop" test.
+  static bool StopSignalled();
   // SIGINT and SIGTERM request a stop of every runtime in the process.
   static void InstallSignalHandlers();
   // Forgets a received SIGINT/SIGTERM (tests that signal themselves).
@@ -128,10 +143,12 @@ class NodeRuntime {
   bool started_ = false;  // the clock is known, timers are scheduled
   int64_t start_utime_ = 0;
   bool stop_requested_ = false;
+  bool interrupted_ = false;
   bool shut_down_ = false;
   int8_t state_;
   std::string status_message_;
   int64_t heartbeat_seq_ = 0;
+  int64_t stamps_rejected_at_last_heartbeat_ = 0;
 };
 
 // Runs a process's main body: one-line error and exit code 2 for UsageError and

@@ -266,6 +266,92 @@ TEST(NodeRuntimeOptions, RegisteredInTheSchema) {
     EXPECT_NE(help.find(flag), std::string::npos) << flag;
 }
 
+// Issue 11, item 12: a batch run stopped by SIGTERM part-way exited 0 and renamed its
+// --log-out from .partial as if it were complete.
+TEST(NodeRuntimeBatch, SignalBeforeTheEndOfTheLogKeepsOutputsAsPartial) {
+  const std::string input = WriteInputLog();
+  const std::string output = TempPath("interrupted.lcm");
+  NodeOptions options;
+  options.log = input;
+  options.log_out = output;
+  options.heartbeat_period = 0;
+  NodeRuntime runtime("test_node", options);
+  runtime.Start();
+  int handled = 0;
+  bool hook_saw_interruption = false;
+  Subscribe<odometry_t>(runtime.bus(), "ODOMETRY", [&](const odometry_t& m) {
+    vehicle_truth_t t{};
+    t.utime = m.utime;
+    Publish(runtime.bus(), "SIM_TRUTH", t);
+    if (++handled == 4) std::raise(SIGTERM);
+  });
+  runtime.OnShutdown([&] { hook_saw_interruption = runtime.interrupted(); });
+  EXPECT_EQ(runtime.Run(), kExitInterrupted);
+  NodeRuntime::ClearStopSignal();
+  EXPECT_EQ(handled, 4);
+  EXPECT_TRUE(runtime.interrupted());
+  EXPECT_TRUE(hook_saw_interruption);
+  EXPECT_FALSE(fs::exists(output)) << "an interrupted run must not leave a file claiming to be complete";
+  ASSERT_TRUE(fs::exists(output + ".partial"));
+  EXPECT_EQ(ReadChannel<vehicle_truth_t>(output + ".partial", "SIM_TRUTH").size(), 4u);
+}
+
+// Issue 11, item 5: stamps far in the future (INT64_MAX) or negative are rejected before
+// any handler sees them, and HEARTBEAT says so.
+TEST(NodeRuntimeLive, StampsOutsideTheWindowAreRejectedAndReported) {
+  auto owned = std::make_unique<FakeBus>();
+  FakeBus& bus = *owned;
+  bus.set_max_stamp_lead_us(10'000'000);
+  ManualClock clock(kT0);
+  NodeOptions options;
+  options.heartbeat_period = 1.0;
+  NodeRuntime runtime("stamp_node", options);
+  runtime.StartWith(std::move(owned), clock);
+  std::vector<int64_t> seen;
+  Subscribe<odometry_t>(runtime.bus(), "ODOMETRY", [&](const odometry_t& m) { seen.push_back(m.utime); });
+  runtime.SpinOnce(0);  // first heartbeat: OK
+  bus.InjectMessage("ODOMETRY", Odometry(kT0, 1), kT0);
+  bus.InjectMessage("ODOMETRY", Odometry(INT64_MAX, 2), kT0);
+  bus.InjectMessage("ODOMETRY", Odometry(INT64_MIN, 3), kT0);
+  bus.InjectMessage("ODOMETRY", Odometry(kT0 + 9'000'000, 4), kT0);  // inside the window
+  bus.InjectMessage("ODOMETRY", Odometry(kT0 - 3'600'000'000, 5), kT0);  // an old log replayed: fine
+  runtime.SpinOnce(0);
+  clock.Advance(1'000'000);
+  runtime.SpinOnce(0);  // heartbeat: WARN, says why
+  clock.Advance(1'000'000);
+  runtime.SpinOnce(0);  // nothing new: OK again
+  EXPECT_EQ(seen, (std::vector<int64_t>{kT0, kT0 + 9'000'000, kT0 - 3'600'000'000}));
+  EXPECT_EQ(runtime.bus().counters().stamps_rejected, 2);
+  EXPECT_EQ(runtime.bus().counters().messages_bad, 2);
+  const auto hb = bus.Decoded<heartbeat_t>("HEARTBEAT");
+  ASSERT_EQ(hb.size(), 3u);
+  EXPECT_EQ(hb[0].state, heartbeat_t::OK);
+  EXPECT_EQ(hb[1].state, heartbeat_t::WARN);
+  EXPECT_NE(hb[1].message.find("2 message(s) rejected for their timestamps"), std::string::npos) << hb[1].message;
+  EXPECT_NE(hb[1].message.find("negative time"), std::string::npos) << hb[1].message;
+  EXPECT_EQ(hb[2].state, heartbeat_t::OK);
+}
+
+// Issue 11, item 13: --heartbeat-period 1e-9 was accepted (49,023 HEARTBEATs in 2 s) and
+// --scan-channel '((' crashed inside LCM.
+TEST(NodeRuntimeOptions, AbsurdPeriodsAndChannelPatternsAreRefused) {
+  NodeOptions options;
+  options.heartbeat_period = 1e-9;
+  options.log = WriteInputLog();
+  NodeRuntime runtime("opt_node", options);
+  EXPECT_THROW(runtime.Start(), UsageError);
+  ConfigSchema schema("opt_node", "test");
+  std::string channel = "LADAR_SCAN";
+  schema.AddChannel("scan_channel", &channel, "subscribes", "ladar_scan_t", "scans");
+  EXPECT_THROW(schema.Parse({"--scan-channel", "(("}), UsageError);
+  EXPECT_THROW(schema.Parse({"--scan-channel", std::string(64, 'A')}), UsageError);
+  EXPECT_NO_THROW(schema.Parse({"--scan-channel", "LADAR_SCAN_.*"}));
+  EXPECT_EQ(channel, "LADAR_SCAN_.*");
+  FakeBus bus;
+  EXPECT_THROW(ValidateChannelPattern("a[b"), UsageError);
+  EXPECT_NO_THROW(ValidateChannelPattern("POSE|POSE_IPE"));
+}
+
 TEST(RunNodeMain, ExitCodes) {
   EXPECT_EQ(RunNodeMain("t", [] { return 0; }), 0);
   EXPECT_EQ(RunNodeMain("t", []() -> int { throw UsageError("bad flag"); }), kExitUsage);
