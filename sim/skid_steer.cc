@@ -138,8 +138,12 @@ SkidSteerMotion SkidSteerVehicle::motion() const {
 }
 
 MotionIncrement SkidSteerVehicle::Step(double dt, const DriveCommand& command, int64_t now_utime) {
+  // The vehicle's own limit caps whatever the command asks for (drive_command_t: "whichever
+  // is shorter"): a lost link must stop the vehicle even after a command claiming to stay
+  // valid for ever.
+  const bool has_own_timeout = command.timeout > 0.0 && std::isfinite(command.timeout);
   const double timeout =
-      command.timeout > 0.0 && std::isfinite(command.timeout) ? command.timeout : options_.command_timeout;
+      has_own_timeout ? std::min(command.timeout, options_.command_timeout) : options_.command_timeout;
   const double age = 1e-6 * static_cast<double>(now_utime - command.utime);
   stale_ = age > timeout;
   return Advance(dt, stale_ ? ClampedCommand{} : ClampDriveCommand(command, options_));

@@ -5,7 +5,8 @@
 // zero"), or turn in place; cruise about three inches per second.
 //
 // A command (v, omega) is clamped to what the vehicle can do:
-//   - mode kStop, or a stale command (older than its timeout): stop, decelerating.
+//   - mode kStop, or a stale command (older than min(its timeout, command_timeout)): stop,
+//     decelerating.
 //   - mode kTurnInPlace, or |v| < min_speed with omega != 0: turn in place.
 //   - otherwise the requested curvature k = omega / v picks the nearest motion on a log
 //     scale: straight if |k| < 1 / (2 R), the fixed arc (k = +-1/R) if 1/(2R) <= |k| <= 2/R,
@@ -35,8 +36,10 @@ struct SkidSteerOptions {
   double max_deceleration = 0.1;        // m/s^2, lowering |speed|; 0 = instantaneous
   double max_yaw_acceleration = 0.05;   // rad/s^2, turning in place; 0 = instantaneous
   double min_speed = 1e-3;              // m/s, below this a (v, omega) command turns in place or stops
-  // s: a command is stale (and the vehicle stops) when it is older than its own timeout
-  // field; commands whose timeout is <= 0 or not finite use this instead.
+  // s: the vehicle's own stale limit. A command is stale (and the vehicle stops) when it is
+  // older than min(its own timeout field, this); a timeout field that is <= 0 or not finite
+  // counts as absent. A sender can shorten the validity but never extend it, so one command
+  // with timeout = 1e9 followed by silence cannot keep the vehicle driving.
   double command_timeout = 0.5;
 };
 

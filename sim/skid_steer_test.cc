@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 #include "common/angle.h"
 
@@ -152,6 +153,40 @@ TEST(SkidSteerTest, StaleCommandStops) {
   EXPECT_FALSE(w.stale());
   w.Step(0.1, no_timeout, 600000);
   EXPECT_TRUE(w.stale());
+}
+
+// Issue 11: one command with timeout = 1e9, then silence, drove the vehicle for ever. The
+// vehicle's own stale limit (command_timeout) caps the command's: whichever is shorter.
+TEST(SkidSteerTest, TheVehiclesStaleLimitCapsALongCommandTimeout) {
+  SkidSteerOptions o = Instant();
+  o.command_timeout = 0.5;
+  SkidSteerVehicle v(o);
+  const DriveCommand forever = Velocity(0.05, 0.0, /*utime=*/0, /*timeout=*/1e9);
+  v.Step(0.1, forever, 400000);  // 0.4 s old: within both limits
+  EXPECT_FALSE(v.stale());
+  EXPECT_DOUBLE_EQ(v.speed(), 0.05);
+  v.Step(0.1, forever, 600000);  // 0.6 s old: past the vehicle's 0.5 s
+  EXPECT_TRUE(v.stale());
+  EXPECT_EQ(v.speed(), 0.0);
+  const double x_stopped = v.pose().x;
+  for (int i = 0; i < 100; ++i) v.Step(0.1, forever, 700000 + i * 100000);  // 10 s more of silence
+  EXPECT_EQ(v.pose().x, x_stopped) << "a stale command moved the vehicle";
+
+  // A command's shorter timeout still wins over the vehicle's limit.
+  SkidSteerVehicle w(o);
+  const DriveCommand brief = Velocity(0.05, 0.0, /*utime=*/0, /*timeout=*/0.2);
+  w.Step(0.1, brief, 150000);
+  EXPECT_FALSE(w.stale());
+  w.Step(0.1, brief, 250000);
+  EXPECT_TRUE(w.stale());
+  // Infinite or NaN timeouts count as none: the vehicle's limit applies.
+  for (const double odd : {std::numeric_limits<double>::infinity(), std::nan("")}) {
+    SkidSteerVehicle u(o);
+    u.Step(0.1, Velocity(0.05, 0.0, 0, odd), 400000);
+    EXPECT_FALSE(u.stale()) << odd;
+    u.Step(0.1, Velocity(0.05, 0.0, 0, odd), 600000);
+    EXPECT_TRUE(u.stale()) << odd;
+  }
 }
 
 TEST(SkidSteerTest, StopsBeforeSwitchingBetweenDrivingAndSpinning) {

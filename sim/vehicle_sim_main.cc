@@ -113,7 +113,8 @@ void Declare(ConfigSchema& s, VehicleSimOptions& o) {
   s.AddDouble("min_speed", &v.min_speed, "m/s", "below this a (v, omega) command turns in place or stops",
               0.0, 1.0);
   s.AddDouble("command_timeout", &v.command_timeout, "s",
-              "a command older than its own timeout (or this, if it has none) is stale: the vehicle stops",
+              "the vehicle's own stale limit: a command older than this or its own timeout, whichever is shorter, "
+              "is stale and the vehicle stops",
               0.001, 3600.0);
   OdometryErrorOptions& e = o.odometry;
   s.AddDouble("odometry_scale_error", &e.scale_error, "fraction", "odometry distance error (0.02 = reads 2% long)",

@@ -26,3 +26,16 @@ add_test(NAME bus.refuses_host_network COMMAND $<TARGET_FILE:fleet_test> --gtest
 set_tests_properties(bus.refuses_host_network PROPERTIES
   ENVIRONMENT_MODIFICATION "MINENAV_IN_PRIVATE_NET=unset:;LCM_DEFAULT_URL=unset:"
   PASS_REGULAR_EXPRESSION "must run inside tests/bus/private_net.sh.*FAILED  \\] 1 test" LABELS bus)
+
+# Issue 11: vehicle_sim's own stale limit caps a command's timeout (port 7790).
+add_executable(vehicle_safety_bus_test bus/vehicle_safety_bus_test.cc)
+target_include_directories(vehicle_safety_bus_test PRIVATE "${CMAKE_SOURCE_DIR}")
+target_link_libraries(vehicle_safety_bus_test PRIVATE minenav_test_support minenav_node GTest::gtest_main)
+target_compile_definitions(vehicle_safety_bus_test PRIVATE ${MINENAV_PROCESS_DEFS})
+minenav_warnings(vehicle_safety_bus_test)
+set_target_properties(vehicle_safety_bus_test PROPERTIES RUNTIME_OUTPUT_DIRECTORY "${CMAKE_BINARY_DIR}/tests")
+add_dependencies(vehicle_safety_bus_test vehicle_sim)
+add_test(NAME bus.vehicle_stops_at_its_stale_limit
+  COMMAND "${MINENAV_PRIVATE_NET}" --port 7790 -- $<TARGET_FILE:vehicle_safety_bus_test>
+          --gtest_filter=VehicleSafetyBusTest.OneCommandWithAHugeTimeoutStopsAtTheVehiclesStaleLimit)
+set_tests_properties(bus.vehicle_stops_at_its_stale_limit PROPERTIES TIMEOUT 120 LABELS bus)

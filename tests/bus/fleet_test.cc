@@ -35,7 +35,9 @@
 #include "minenav/line_map_t.hpp"
 #include "minenav/odometry_t.hpp"
 #include "minenav/vehicle_truth_t.hpp"
+#include "tests/bus/private_bus_test.h"
 #include "tests/child_process.h"
+#include "tests/temp_dir.h"
 #include "tests/log_contents.h"
 
 namespace minenav {
@@ -51,41 +53,7 @@ using testing::ReadTextFile;
 // Processes stop by themselves after this long even if the test dies without killing them.
 constexpr const char* kSafetyStop = "--run-for";
 
-struct TempDir {
-  fs::path path = fs::temp_directory_path() / ("minenav_fleet_test_" + std::to_string(::getpid()));
-  TempDir() { fs::create_directories(path); }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
-  std::string operator/(const std::string& name) const { return (path / name).string(); }
-};
-
-class BusTest : public ::testing::Test {
- protected:
-  void SetUp() override {
-    // Never run on the host network: without the namespace this test must fail, loudly.
-    const char* in_private_net = std::getenv("MINENAV_IN_PRIVATE_NET");
-    ASSERT_TRUE(in_private_net != nullptr && std::string(in_private_net) == "1")
-        << "bus tests must run inside tests/bus/private_net.sh (a private network namespace); "
-           "register them in CTest as: private_net.sh --port 77NN -- <test binary>";
-    const char* url = std::getenv("LCM_DEFAULT_URL");
-    ASSERT_TRUE(url != nullptr && url[0] != '\0') << "private_net.sh --port N sets LCM_DEFAULT_URL; it is missing";
-    url_ = url;
-  }
-
-  // Handles messages on `bus` for `seconds`, or until `done` returns true.
-  static bool Pump(Bus& bus, double seconds, const std::function<bool()>& done = nullptr) {
-    const auto end = Clock::now() + std::chrono::duration<double>(seconds);
-    while (Clock::now() < end) {
-      if (done && done()) return true;
-      bus.HandleFor(10'000);
-    }
-    return done ? done() : true;
-  }
-
-  std::string url_;
-};
+using BusTest = testing::PrivateBusTest;
 
 drive_command_t Command(int8_t mode, double v, double omega, int64_t seq) {
   drive_command_t c{};
@@ -156,7 +124,7 @@ Pose2 TruthAtReceive(const std::vector<testing::Logged<vehicle_truth_t>>& truth,
 }
 
 TEST_F(BusTest, ScriptedDriveIsRecordedCompletelyAndReplaysIdentically) {
-  TempDir dir;
+  testing::TempDir dir("minenav_fleet_test");
   const std::string log = dir / "run.lcm";
   constexpr double kSpeed = 0.3, kTurnRate = 0.3;  // m/s, rad/s
 
@@ -322,7 +290,7 @@ TEST_F(BusTest, ScriptedDriveIsRecordedCompletelyAndReplaysIdentically) {
 }
 
 TEST_F(BusTest, BadMessagesAreLoggedCountedAndSurvived) {
-  TempDir dir;
+  testing::TempDir dir("minenav_fleet_test");
   ChildProcess sim({MINENAV_VEHICLE_SIM_BIN, kSafetyStop, "90", "--generate", "mine", "--heartbeat-period", "0.2",
                     "--max-forward-speed", "0.5", "--max-acceleration", "0"},
                    dir / "sim.txt");
@@ -396,7 +364,7 @@ TEST_F(BusTest, BadMessagesAreLoggedCountedAndSurvived) {
 }
 
 TEST_F(BusTest, ReplayRepublishesRecordedScansAtTheRecordedRate) {
-  TempDir dir;
+  testing::TempDir dir("minenav_fleet_test");
   const std::string log = dir / "dataset.lcm";
   std::vector<std::vector<uint8_t>> expected;
   {
