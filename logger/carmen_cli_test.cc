@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 #include <sys/wait.h>
+#include <zlib.h>
 
 #include <cmath>
 #include <cstdlib>
@@ -171,6 +172,35 @@ TEST(CarmenCli, ImportBadInput) {
   ExpectInputError(LogTool("import-carmen " + good + " " + out + " --scan-odometry sometimes"),
                    "--scan-odometry must be auto, always or never", out);
   ExpectInputError(LogTool("import-carmen " + good), "", "");
+}
+
+// Issue 11's probe through the command line: a .gz cut at a flush point gave exit 0 with
+// 11 of 50 scans, and a 50 MB field a 52 MB "one-line" error.
+TEST(CarmenCli, ImportRefusesTruncatedAndOversizedInput) {
+  const std::string out = TempPath("hostile.lcm");
+  std::string head, tail;
+  for (int k = 0; k < 50; ++k)
+    (k < 11 ? head : tail) += "FLASER 3 1 2 3 0 0 0 0 0 0 " + std::to_string(100 + k) + ".5 h 0\n";
+  const std::string gz = TempPath("cut.clf.gz");
+  gzFile f = gzopen(gz.c_str(), "wb");
+  ASSERT_NE(f, nullptr);
+  gzwrite(f, head.data(), static_cast<unsigned>(head.size()));
+  ASSERT_EQ(gzflush(f, Z_SYNC_FLUSH), Z_OK);
+  const auto flush_point = std::filesystem::file_size(gz);
+  gzwrite(f, tail.data(), static_cast<unsigned>(tail.size()));
+  ASSERT_EQ(gzclose(f), Z_OK);
+  const RunResult whole = LogTool("import-carmen " + gz + " " + out);
+  ASSERT_EQ(whole.exit_code, 0) << whole.err;
+  EXPECT_NE(whole.err.find("50 scans on LADAR_SCAN"), std::string::npos) << whole.err;
+  std::filesystem::remove(out);
+  std::filesystem::resize_file(gz, flush_point);
+  ExpectInputError(LogTool("import-carmen " + gz + " " + out), gz + ": truncated", out);
+
+  // A 3 MB field: the line is over the 1 MiB limit; the error names the line, and is short.
+  const std::string big = WriteText("big.clf", head + "FLASER 3 " + std::string(3'000'000, '7') + " 2 3\n" + tail);
+  const RunResult r = LogTool("import-carmen " + big + " " + out);
+  ExpectInputError(r, big + ":12: line longer than 1048576 bytes", out);
+  EXPECT_LT(r.err.size(), 300u) << r.err.substr(0, 400);
 }
 
 // Poses at 1, 2, 3 s; two relations off by known amounts (relations_test.cc's exact case).

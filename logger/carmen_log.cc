@@ -10,8 +10,9 @@
 #include <fstream>
 #include <limits>
 #include <memory>
-#include <sstream>
+#include <string>
 #include <string_view>
+#include <vector>
 
 #include "common/angle.h"
 #include "common/file_io.h"
@@ -19,84 +20,150 @@
 namespace minenav {
 namespace {
 
-// ---- Decompression: whole file into memory (the largest log here is 16 MB of text).
+// ---- Decompression, streamed: the file is read in chunks and split into lines as it
+// comes, so memory holds one line at a time, never the whole decompressed text (a 3 MB
+// gzip bomb expands to 3 GB). A truncated stream is an error, not a shorter log.
 
-std::string ReadPlain(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path + ": cannot open");
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+constexpr size_t kChunkBytes = 1 << 16;
 
-std::string ReadGzip(const std::string& path) {
-  gzFile f = gzopen(path.c_str(), "rb");
-  if (f == nullptr) throw InputError(path + ": cannot open");
-  std::string out;
-  std::vector<char> buf(1 << 16);
-  while (true) {
-    const int n = gzread(f, buf.data(), static_cast<unsigned>(buf.size()));
-    if (n < 0) {
-      int code = 0;
-      const std::string msg = gzerror(f, &code);
-      gzclose(f);
-      throw InputError(path + ": gzip data is corrupt (" + msg + ")");
-    }
-    if (n == 0) break;
-    out.append(buf.data(), static_cast<size_t>(n));
+// Decompressed bytes in chunks. Read() returns 0 at the clean end of the data and throws
+// InputError naming the file when the data is corrupt or ends early.
+class ByteSource {
+ public:
+  virtual ~ByteSource() = default;
+  virtual size_t Read(char* buffer, size_t capacity) = 0;
+};
+
+class PlainSource : public ByteSource {
+ public:
+  explicit PlainSource(const std::string& path) : path_(path), in_(path, std::ios::binary) {
+    if (!in_) throw InputError(path + ": cannot open");
   }
-  gzclose(f);
-  return out;
+  size_t Read(char* buffer, size_t capacity) override {
+    in_.read(buffer, static_cast<std::streamsize>(capacity));
+    if (in_.bad()) throw InputError(path_ + ": read error");
+    return static_cast<size_t>(in_.gcount());
+  }
+
+ private:
+  std::string path_;
+  std::ifstream in_;
+};
+
+[[noreturn]] void ThrowTruncated(const std::string& path, const char* format) {
+  throw InputError(path + ": truncated: the " + format +
+                   " stream ends before its end marker (the file was cut short; the lines read so far are not "
+                   "the whole log)");
 }
 
-std::string ReadBzip2(const std::string& path) {
-  std::unique_ptr<FILE, int (*)(FILE*)> file(std::fopen(path.c_str(), "rb"), &std::fclose);
-  if (!file) throw InputError(path + ": cannot open");
-  std::string out;
-  std::vector<char> buf(1 << 16);
-  // A .bz2 may hold several concatenated streams (pbzip2): read them all.
-  std::vector<char> unused;
-  while (true) {
-    int err = BZ_OK;
-    BZFILE* bz = BZ2_bzReadOpen(&err, file.get(), 0, 0, unused.empty() ? nullptr : unused.data(),
-                                static_cast<int>(unused.size()));
-    if (err != BZ_OK) {
-      BZ2_bzReadClose(&err, bz);
-      throw InputError(path + ": cannot read bzip2 data");
+class GzipSource : public ByteSource {
+ public:
+  explicit GzipSource(const std::string& path) : path_(path), file_(gzopen(path.c_str(), "rb")) {
+    if (file_ == nullptr) throw InputError(path + ": cannot open");
+  }
+  ~GzipSource() override {
+    if (file_ != nullptr) gzclose(file_);
+  }
+  size_t Read(char* buffer, size_t capacity) override {
+    if (file_ == nullptr) return 0;  // closed at the end of the data
+    const int n = gzread(file_, buffer, static_cast<unsigned>(capacity));
+    // zlib reports a stream that ends without its final block and CRC/length trailer as
+    // Z_BUF_ERROR ("unexpected end of file"), after handing out the bytes before the cut:
+    // a file cut at a flush point decodes cleanly up to there.
+    int code = Z_OK;
+    const char* message = gzerror(file_, &code);
+    if (code == Z_BUF_ERROR) ThrowTruncated(path_, "gzip");
+    if (n < 0 || code != Z_OK)
+      throw InputError(path_ + ": gzip data is corrupt (" + std::string(message ? message : "?") + ")");
+    if (n == 0) {
+      const int closed = gzclose(file_);
+      file_ = nullptr;
+      if (closed == Z_BUF_ERROR) ThrowTruncated(path_, "gzip");
+      if (closed != Z_OK) throw InputError(path_ + ": gzip data is corrupt (gzclose: " + std::to_string(closed) + ")");
     }
-    while (err == BZ_OK) {
-      const int n = BZ2_bzRead(&err, bz, buf.data(), static_cast<int>(buf.size()));
-      if (err != BZ_OK && err != BZ_STREAM_END) {
-        BZ2_bzReadClose(&err, bz);
-        throw InputError(path + ": bzip2 data is corrupt or truncated");
+    return static_cast<size_t>(n);
+  }
+
+ private:
+  std::string path_;
+  gzFile file_;
+};
+
+// A .bz2 may hold several concatenated streams (pbzip2): all are read, in order.
+class Bzip2Source : public ByteSource {
+ public:
+  explicit Bzip2Source(const std::string& path) : path_(path), file_(std::fopen(path.c_str(), "rb"), &std::fclose) {
+    if (!file_) throw InputError(path + ": cannot open");
+  }
+  ~Bzip2Source() override { CloseStream(); }
+  size_t Read(char* buffer, size_t capacity) override {
+    while (!done_) {
+      if (stream_ == nullptr) OpenStream();
+      int err = BZ_OK;
+      const int n = BZ2_bzRead(&err, stream_, buffer, static_cast<int>(capacity));
+      if (err == BZ_OK) {
+        if (n > 0) return static_cast<size_t>(n);
+        continue;
       }
-      out.append(buf.data(), static_cast<size_t>(n));
+      if (err == BZ_UNEXPECTED_EOF) ThrowTruncated(path_, "bzip2");
+      if (err != BZ_STREAM_END) throw InputError(path_ + ": bzip2 data is corrupt (error " + std::to_string(err) + ")");
+      // The end of one stream: keep the bytes read past it, they start the next.
+      void* rest = nullptr;
+      int rest_size = 0;
+      BZ2_bzReadGetUnused(&err, stream_, &rest, &rest_size);
+      unused_.assign(static_cast<char*>(rest), static_cast<char*>(rest) + rest_size);
+      CloseStream();
+      if (unused_.empty()) {
+        const int c = std::fgetc(file_.get());
+        if (c == EOF) done_ = true;
+        else std::ungetc(c, file_.get());
+      }
+      if (n > 0) return static_cast<size_t>(n);
     }
-    void* rest = nullptr;
-    int rest_size = 0;
-    BZ2_bzReadGetUnused(&err, bz, &rest, &rest_size);
-    unused.assign(static_cast<char*>(rest), static_cast<char*>(rest) + rest_size);
-    BZ2_bzReadClose(&err, bz);
-    if (unused.empty()) {
-      const int c = std::fgetc(file.get());
-      if (c == EOF) break;
-      std::ungetc(c, file.get());
+    return 0;
+  }
+
+ private:
+  void OpenStream() {
+    int err = BZ_OK;
+    stream_ = BZ2_bzReadOpen(&err, file_.get(), 0, 0, unused_.empty() ? nullptr : unused_.data(),
+                             static_cast<int>(unused_.size()));
+    if (err != BZ_OK) {
+      CloseStream();
+      throw InputError(path_ + ": cannot read bzip2 data");
     }
   }
-  return out;
-}
+  void CloseStream() {
+    if (stream_ == nullptr) return;
+    int err = BZ_OK;
+    BZ2_bzReadClose(&err, stream_);
+    stream_ = nullptr;
+  }
 
-std::string ReadMaybeCompressed(const std::string& path) {
+  std::string path_;
+  std::unique_ptr<FILE, int (*)(FILE*)> file_;
+  BZFILE* stream_ = nullptr;
+  std::vector<char> unused_;
+  bool done_ = false;
+};
+
+std::unique_ptr<ByteSource> OpenMaybeCompressed(const std::string& path) {
   std::ifstream probe(path, std::ios::binary);
   if (!probe) throw InputError(path + ": cannot open");
   char magic[3] = {0, 0, 0};
   probe.read(magic, 3);
   const std::streamsize got = probe.gcount();
   probe.close();
-  if (got >= 3 && magic[0] == 'B' && magic[1] == 'Z' && magic[2] == 'h') return ReadBzip2(path);
+  if (got >= 3 && magic[0] == 'B' && magic[1] == 'Z' && magic[2] == 'h') return std::make_unique<Bzip2Source>(path);
   if (got >= 2 && static_cast<unsigned char>(magic[0]) == 0x1f && static_cast<unsigned char>(magic[1]) == 0x8b)
-    return ReadGzip(path);
-  return ReadPlain(path);
+    return std::make_unique<GzipSource>(path);
+  return std::make_unique<PlainSource>(path);
+}
+
+[[noreturn]] void ThrowLineTooLong(const std::string& source, int64_t line_number, size_t max_line_bytes) {
+  throw InputError(source + ":" + std::to_string(line_number) + ": line longer than " +
+                   std::to_string(max_line_bytes) +
+                   " bytes (a CARMEN line is a few KB): not a CARMEN log, or a corrupt one");
 }
 
 // ---- Parsing.
@@ -115,13 +182,38 @@ void SplitFields(std::string_view line, std::vector<std::string_view>* fields) {
   }
 }
 
+// Input text as it may appear in a one-line error (Excerpt, or Quoted in '...'): at most
+// kMaxQuotedBytes of it, then "..."; bytes that are not printable ASCII as \xHH, so a
+// hostile field can neither make the message megabytes long nor break it into lines or
+// send terminal escapes.
+constexpr size_t kMaxQuotedBytes = 80;
+
+std::string Excerpt(std::string_view text) {
+  static constexpr char kHex[] = "0123456789abcdef";
+  std::string out;
+  for (size_t i = 0; i < text.size() && i < kMaxQuotedBytes; ++i) {
+    const auto c = static_cast<unsigned char>(text[i]);
+    if (c >= 0x20 && c < 0x7f) {
+      out += static_cast<char>(c);
+    } else {
+      out += "\\x";
+      out += kHex[c >> 4];
+      out += kHex[c & 0xf];
+    }
+  }
+  if (text.size() > kMaxQuotedBytes) out += "...";
+  return out;
+}
+
+std::string Quoted(std::string_view text) { return "'" + Excerpt(text) + "'"; }
+
 class LineParser {
  public:
   LineParser(const std::string& source, int64_t line_number, const std::vector<std::string_view>& fields)
       : source_(source), line_(line_number), fields_(fields) {}
 
   [[noreturn]] void Fail(const std::string& what) const {
-    throw InputError(source_ + ":" + std::to_string(line_) + ": " + std::string(fields_[0]) + ": " + what);
+    throw InputError(source_ + ":" + std::to_string(line_) + ": " + Excerpt(fields_[0]) + ": " + what);
   }
 
   double Double(size_t i, const char* what) const {
@@ -132,7 +224,7 @@ class LineParser {
     if (!f.empty() && *begin == '+') ++begin;
     const auto r = std::from_chars(begin, end, v);
     if (r.ec != std::errc() || r.ptr != end || !std::isfinite(v))
-      Fail(std::string(what) + " '" + std::string(f) + "' (field " + std::to_string(i + 1) + ") is not a finite number");
+      Fail(std::string(what) + " " + Quoted(f) + " (field " + std::to_string(i + 1) + ") is not a finite number");
     return v;
   }
 
@@ -141,7 +233,7 @@ class LineParser {
     int v = 0;
     const auto r = std::from_chars(f.data(), f.data() + f.size(), v);
     if (r.ec != std::errc() || r.ptr != f.data() + f.size() || v < 0 || v > 1000000)
-      Fail(std::string(what) + " '" + std::string(f) + "' (field " + std::to_string(i + 1) +
+      Fail(std::string(what) + " " + Quoted(f) + " (field " + std::to_string(i + 1) +
            ") is not a count");
     return v;
   }
@@ -151,7 +243,7 @@ class LineParser {
     const std::string_view f = fields_[fields_.size() - 3];
     int64_t t = 0;
     if (!ParseCarmenTimestamp(std::string(f), &t))
-      Fail("ipc timestamp '" + std::string(f) + "' (field " + std::to_string(fields_.size() - 2) +
+      Fail("ipc timestamp " + Quoted(f) + " (field " + std::to_string(fields_.size() - 2) +
            ") is not a time in seconds");
     return t;
   }
@@ -298,7 +390,7 @@ void ParseParam(ParseState* s, const LineParser& p, const std::vector<std::strin
   ++s->log.stats.param_lines;
   if (f[1] == "robot_front_laser_max") {
     const double v = p.Double(2, "robot_front_laser_max");
-    if (!(v > 0.0)) p.Fail("robot_front_laser_max " + std::string(f[2]) + " m is not positive");
+    if (!(v > 0.0)) p.Fail("robot_front_laser_max " + Excerpt(f[2]) + " m is not positive");
     s->front_laser_max = v;
   }
 }
@@ -376,45 +468,102 @@ int64_t MakeStrictlyIncreasing(std::vector<int64_t>* utimes) {
   return changed;
 }
 
-CarmenLog ParseCarmenLog(const std::string& text, const std::string& source_name, const CarmenReadOptions& options) {
+namespace {
+
+void CheckReadOptions(const CarmenReadOptions& options) {
   if (!(options.max_range > 0.0) || !(options.min_range >= 0.0) || options.min_range >= options.max_range)
     throw InputError("CARMEN reader: need 0 <= min_range < max_range, got " + std::to_string(options.min_range) +
                      ", " + std::to_string(options.max_range) + " m");
-  ParseState s;
-  s.options = &options;
-  std::vector<std::string_view> fields;
+  if (options.max_line_bytes == 0) throw InputError("CARMEN reader: max_line_bytes must be > 0");
+}
+
+// Parses one line at a time, in file order; Finish() gives the log.
+class CarmenParser {
+ public:
+  CarmenParser(const std::string& source_name, const CarmenReadOptions& options) : source_(source_name) {
+    CheckReadOptions(options);
+    state_.options = &options;
+  }
+
+  // `line` without its '\n'.
+  void AddLine(std::string_view line) {
+    ++line_number_;
+    ++state_.log.stats.lines;
+    if (line.size() > state_.options->max_line_bytes)
+      ThrowLineTooLong(source_, line_number_, state_.options->max_line_bytes);
+    SplitFields(line, &fields_);
+    if (fields_.empty() || fields_[0].front() == '#') return;
+    const LineParser p(source_, line_number_, fields_);
+    const std::string_view kind = fields_[0];
+    if (kind == "FLASER") {
+      ParseFlaser(&state_, p);
+    } else if (kind == "ROBOTLASER1") {
+      ParseRobotLaser1(&state_, p);
+    } else if (kind == "ODOM") {
+      ParseOdom(&state_, p);
+    } else if (kind == "PARAM") {
+      ParseParam(&state_, p, fields_);
+    } else {
+      ++state_.log.stats.ignored_lines;
+    }
+  }
+
+  // The number the next line will have (for errors about a line not yet complete).
+  int64_t next_line_number() const { return line_number_ + 1; }
+  size_t max_line_bytes() const { return state_.options->max_line_bytes; }
+
+  CarmenLog Finish() {
+    if (state_.options->monotonic_times) MakeMonotonic(&state_.log);
+    return std::move(state_.log);
+  }
+
+ private:
+  const std::string& source_;
+  ParseState state_;
+  std::vector<std::string_view> fields_;
+  int64_t line_number_ = 0;
+};
+
+}  // namespace
+
+CarmenLog ParseCarmenLog(const std::string& text, const std::string& source_name, const CarmenReadOptions& options) {
+  CarmenParser parser(source_name, options);
   const std::string_view all(text);
   size_t pos = 0;
-  int64_t line_number = 0;
   while (pos < all.size()) {
     size_t end = all.find('\n', pos);
     if (end == std::string_view::npos) end = all.size();
-    const std::string_view line = all.substr(pos, end - pos);
+    parser.AddLine(all.substr(pos, end - pos));
     pos = end + 1;
-    ++line_number;
-    ++s.log.stats.lines;
-    SplitFields(line, &fields);
-    if (fields.empty() || fields[0].front() == '#') continue;
-    const LineParser p(source_name, line_number, fields);
-    const std::string_view kind = fields[0];
-    if (kind == "FLASER") {
-      ParseFlaser(&s, p);
-    } else if (kind == "ROBOTLASER1") {
-      ParseRobotLaser1(&s, p);
-    } else if (kind == "ODOM") {
-      ParseOdom(&s, p);
-    } else if (kind == "PARAM") {
-      ParseParam(&s, p, fields);
-    } else {
-      ++s.log.stats.ignored_lines;
-    }
   }
-  if (options.monotonic_times) MakeMonotonic(&s.log);
-  return std::move(s.log);
+  return parser.Finish();
 }
 
 CarmenLog ReadCarmenLog(const std::string& path, const CarmenReadOptions& options) {
-  return ParseCarmenLog(ReadMaybeCompressed(path), path, options);
+  CarmenParser parser(path, options);
+  const std::unique_ptr<ByteSource> source = OpenMaybeCompressed(path);
+  std::vector<char> chunk(kChunkBytes);
+  // The start of a line whose '\n' has not arrived yet; never longer than the line limit
+  // plus one chunk, so a single endless line cannot exhaust memory.
+  std::string partial;
+  while (const size_t n = source->Read(chunk.data(), chunk.size())) {
+    std::string_view rest(chunk.data(), n);
+    for (size_t newline = rest.find('\n'); newline != std::string_view::npos; newline = rest.find('\n')) {
+      if (partial.empty()) {
+        parser.AddLine(rest.substr(0, newline));
+      } else {
+        partial.append(rest.substr(0, newline));
+        parser.AddLine(partial);
+        partial.clear();
+      }
+      rest.remove_prefix(newline + 1);
+    }
+    partial.append(rest);
+    if (partial.size() > parser.max_line_bytes())
+      ThrowLineTooLong(path, parser.next_line_number(), parser.max_line_bytes());
+  }
+  if (!partial.empty()) parser.AddLine(partial);
+  return parser.Finish();
 }
 
 }  // namespace minenav

@@ -45,6 +45,7 @@
 //   - MakeStrictlyIncreasing() does the same to any sequence of times afterwards.
 // CarmenLogStats counts the reversals either way.
 
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -64,6 +65,11 @@ struct CarmenReadOptions {
   // When true, scans, scan_odometry and odometry get strictly increasing utimes (see the
   // header comment). Default false: raw ipc times, as the relations files name them.
   bool monotonic_times = false;
+  // bytes. A longer line is refused (InputError naming the line) as soon as this much of it
+  // has been read: a CARMEN line is a few KB (Intel's FLASER lines ~1.5 KB, hospital's
+  // ROBOTLASER1 ~3 KB), and a file whose lines are endless is not a log but, e.g., a
+  // decompression bomb (3 MB of gzip expanding to one 3 GB line).
+  size_t max_line_bytes = 1 << 20;
 };
 
 struct CarmenLogStats {
@@ -91,12 +97,17 @@ struct CarmenLog {
 };
 
 // Reads a CARMEN log: plain text, gzip or bzip2 (recognised by the file's first bytes, so
-// .clf, .clf.gz, .clf.bz2 and .log.gz all work). Throws InputError with one line naming
-// the file, the line number and what is wrong for an unreadable file or a malformed
-// FLASER / ROBOTLASER1 / ODOM / PARAM line.
+// .clf, .clf.gz, .clf.bz2 and .log.gz all work). The file is decompressed and parsed as a
+// stream, one line in memory at a time. Throws InputError with one line naming the file
+// (and the line number where there is one) and what is wrong for: an unreadable file;
+// corrupt compressed data; a gzip or bzip2 stream that ends before its end marker (a file
+// cut short: "truncated", not a shorter log); a line longer than max_line_bytes; a
+// malformed FLASER / ROBOTLASER1 / ODOM / PARAM line. Messages quote at most 80 bytes of
+// the offending text (then "...", non-printable bytes as \xHH).
 CarmenLog ReadCarmenLog(const std::string& path, const CarmenReadOptions& options = {});
 
-// The same for CARMEN text already in memory; `source_name` names it in errors.
+// The same for CARMEN text already in memory (same line limit); `source_name` names it in
+// errors.
 CarmenLog ParseCarmenLog(const std::string& text, const std::string& source_name,
                          const CarmenReadOptions& options = {});
 

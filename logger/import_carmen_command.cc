@@ -50,8 +50,9 @@ int RunImportCarmenCommand(const std::vector<std::string>& raw_args) {
   if (read.min_range >= read.max_range) throw UsageError("--min-range must be below --max-range");
   const std::string in = schema.positional()[0];
   const std::string out = schema.positional()[1];
-  std::error_code ec;
-  if (std::filesystem::equivalent(in, out, ec)) throw UsageError("IN and OUT are the same file");
+  CheckOutputIsNotInput("OUT", out, {in});
+  // The log is written as OUT.partial first: that must not be the input either.
+  CheckOutputIsNotInput("OUT (written first as OUT.partial)", out + ".partial", {in});
 
   const auto start = std::chrono::steady_clock::now();
   auto seconds = [&] {
