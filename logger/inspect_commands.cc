@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cstdio>
 #include <iostream>
+#include <string>
+#include <vector>
 
 #include "common/config.h"
 #include "common/file_io.h"
@@ -72,6 +74,8 @@ int RunInfoCommand(const std::vector<std::string>& raw_args) {
       "channel named in DESIGN.md fails to decode as its type.\n");
   if (schema.Parse(args) == ParseOutcome::kExit) return 0;
   const std::string path = schema.positional()[0];
+  // Before anything is read or written: `info LOG --json-out LOG` replaced the log with JSON.
+  CheckOutputIsNotInput("--json-out", json_out, {path});
   const LogSummary summary = SummarizeLog(path);
   const std::string json_text = LogSummaryToJson(summary);
   std::cout << (json ? json_text : FormatLogSummary(summary));
@@ -112,6 +116,8 @@ int RunExportCommand(const std::vector<std::string>& raw_args) {
   if (poses_channel.empty() && scans_out.empty()) throw UsageError("nothing to export: give --poses CHANNEL --out FILE and/or --scans-out FILE");
   if (!poses_channel.empty()) RequireOutputPath(out, "--out (with --poses)");
   if (poses_channel.empty() && !out.empty()) throw UsageError("--out needs --poses CHANNEL");
+  CheckOutputIsNotInput("--out", out, {path});
+  CheckOutputIsNotInput("--scans-out", scans_out, {path});
 
   RunLogOptions read_options;
   read_options.read_scans = !scans_out.empty();
@@ -179,6 +185,10 @@ int RunRenderCommand(const std::vector<std::string>& raw_args) {
   schema.AddHelpEpilog("Example: log_tool render survey.lcm --world mine.json --out survey.svg\n");
   if (schema.Parse(args) == ParseOutcome::kExit) return 0;
   RequireOutputPath(out, "--out");
+  std::vector<std::string> inputs = options.world_paths;
+  inputs.push_back(schema.positional()[0]);
+  inputs.push_back(options.map_path);
+  CheckOutputIsNotInput("--out", out, inputs);
   const LogRenderResult result = BuildLogScene(schema.positional()[0], options);
   WriteFileAtomically(out, RenderSvg(result.scene, svg));
   std::fprintf(stderr, "log_tool render: %d scans drawn (%d without a pose) -> %s\n", result.scans_drawn,

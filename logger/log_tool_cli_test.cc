@@ -292,6 +292,57 @@ TEST(LogToolBadInput, BadFlags) {
   ExpectInputError(LogTool("record"), "--out is required", {});
 }
 
+// Issue 11: `info LOG --json-out LOG` replaced the log with its JSON summary, exit 0. No
+// subcommand may write over a file it reads, however the path is spelled.
+TEST(LogToolBadInput, NoSubcommandOverwritesItsInput) {
+  const Inputs in = Generate();
+  const std::string log = TempPath("precious.lcm");
+  ASSERT_EQ(LogTool("survey --world " + in.world + " --stations " + in.stations + " --points 64 --quiet --out " + log)
+                .exit_code,
+            0);
+  const std::string rel = TempPath("rel.txt"), poses = TempPath("poses.csv");
+  std::ofstream(rel) << "1 2 1 0 0 0 0 0\n";
+  std::ofstream(poses) << "utime,x,y,theta\n1000000,0,0,0\n2000000,1,0,0\n";
+  const std::vector<std::string> inputs = {log, in.world, in.stations, rel, poses};
+  std::vector<std::string> before;
+  for (const std::string& f : inputs) before.push_back(ReadAll(f));
+  // The same file through another spelling of its path.
+  const std::string log_again = Dir() + "/./" + std::filesystem::path(log).filename().string();
+  const std::string survey = "survey --world " + in.world + " --stations " + in.stations + " --points 64 --quiet";
+  const std::vector<std::string> commands = {
+      "info " + log + " --json-out " + log,
+      "info " + log + " --json-out " + log_again,
+      "info --json " + log + " --json-out " + log,
+      "export " + log + " --poses SIM_TRUTH --out " + log,
+      "export " + log + " --scans-out " + log_again,
+      "render " + log + " --out " + log,
+      "render " + log + " --world " + in.world + " --out " + in.world,
+      survey + " --out " + in.world,
+      survey + " --out " + TempPath("s.lcm") + " --truth-out " + in.stations,
+      "import-carmen " + log + " " + log_again,
+      "relations --relations " + rel + " --poses " + poses + " --json-out " + poses,
+      "relations --relations " + rel + " --poses " + poses + " --errors-out " + rel,
+  };
+  for (const std::string& command : commands) {
+    SCOPED_TRACE(command);
+    const RunResult r = LogTool(command);
+    ExpectInputError(r, "is an input of this run", {TempPath("s.lcm")});
+    EXPECT_TRUE(r.out.empty()) << "nothing may be reported before the refusal: " << r.out;
+    for (size_t i = 0; i < inputs.size(); ++i) EXPECT_EQ(ReadAll(inputs[i]), before[i]) << inputs[i] << " changed";
+  }
+  // A log written as OUT.partial first must not overwrite an input named OUT.partial.
+  const std::string partial = TempPath("next.lcm") + ".partial";
+  std::ofstream(partial) << before[2];  // a copy of the stations CSV
+  const RunResult r =
+      LogTool("survey --world " + in.world + " --stations " + partial + " --out " + TempPath("next.lcm"));
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("OUT.partial"), std::string::npos) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_FALSE(FileExists(TempPath("next.lcm")));
+  EXPECT_EQ(ReadAll(partial), before[2]);
+  std::filesystem::remove(partial);
+}
+
 // A log whose LADAR_SCAN message has a wrong fingerprint or a truncated payload.
 std::string BadLog(bool truncated) {
   const auto run = logger_test::MakeTestRun(2, 36);

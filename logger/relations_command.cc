@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "common/config.h"
 #include "common/file_io.h"
@@ -153,6 +154,9 @@ int RunRelationsCommand(const std::vector<std::string>& args) {
   if (schema.Parse(args) == ParseOutcome::kExit) return 0;
   RequireOutputPath(relations_path, "--relations");
   RequireOutputPath(poses_path, "--poses");
+  const std::vector<std::string> inputs = {relations_path, poses_path, odometry_path};
+  CheckOutputIsNotInput("--json-out", json_out, inputs);
+  CheckOutputIsNotInput("--errors-out", errors_out, inputs);
 
   const std::vector<Relation> relations = LoadRelations(relations_path);
   std::vector<StampedPose> poses = LoadPoses(poses_path, poses_channel, false);

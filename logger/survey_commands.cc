@@ -5,6 +5,8 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <string>
+#include <vector>
 
 #include "common/config.h"
 #include "common/file_io.h"
@@ -175,6 +177,12 @@ int RunSurveyCommand(const std::vector<std::string>& raw_args) {
   if (flags.stations_path.empty()) throw UsageError("--stations is required (see --help)");
   RequireOutputPath(flags.out, "--out");
   if (const std::string why = ValidateSurveyOptions(options); !why.empty()) throw UsageError(why);
+  std::vector<std::string> inputs = world_paths;
+  inputs.push_back(flags.stations_path);
+  CheckOutputIsNotInput("--out", flags.out, inputs);
+  // The log is written as OUT.partial first: that must not be an input either.
+  CheckOutputIsNotInput("--out (written first as OUT.partial)", flags.out + ".partial", inputs);
+  CheckOutputIsNotInput("--truth-out", flags.truth_out, inputs);
 
   std::vector<std::vector<Segment>> worlds;
   for (const auto& p : world_paths) {

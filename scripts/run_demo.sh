@@ -9,8 +9,9 @@
 # waypoint_driver inside a private network namespace (nothing leaves this machine), drives
 # the survey route station by station, and leaves in DIR (default out/demo-<UTC time>): the
 # log, the world, the stations, the live contour map (contour_map.json, with a checkpoint of
-# the mapper), a summary of the log, an SVG of the run and an SVG of the contour map
-# rebuilt from the log by the batch mapper (same policy as live).
+# the mapper saved every 10 scans, so a crash loses the last few scans, not the map), a
+# summary of the log, an SVG of the run and an SVG of the contour map rebuilt from the log
+# by the batch mapper (same policy as live).
 #
 # The miner's real cruise speed is 0.076 m/s; the demo drives at --speed (default 1 m/s)
 # so that a 16-station survey takes about two minutes.
@@ -23,7 +24,7 @@ while [ $# -gt 0 ]; do
     --seed) seed="$2"; shift 2 ;;
     --speed) speed="$2"; shift 2 ;;
     --out) out="$2"; shift 2 ;;
-    -h|--help) sed -n '2,15p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) awk 'NR > 1 && /^#/ { print; next } NR > 1 { exit }' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "run_demo.sh: unknown option '$1' (see --help)" >&2; exit 2 ;;
   esac
 done
@@ -49,7 +50,15 @@ start_pose="$(sed -n 2p "$out/stations.csv")"
 # Everything below runs in a fresh network namespace: loopback only, multicast routed on it.
 # Scans arrive at 10 Hz while the vehicle drives: insert one per metre or 0.3 rad, track the rest.
 mapper_policy="--insert-min-translation 1.0 --insert-min-rotation 0.3 --final-refinement-rounds 2"
-export out bin speed seed start_pose mapper_policy
+# The live mapper's checkpoint (and contour_map.json) every 10 handled scans, i.e. every 1 s
+# of 10 Hz scans (inserted and tracked ones count alike): without --checkpoint-every it is
+# written only at a clean shutdown and a crash loses the whole live map. A checkpoint holds
+# the inserted scans, 2048 points x 16 bytes each: 1.3 MB after 40 inserts, written in
+# 0.004-0.023 s (measured here; mapper/README.md), against 0.16 s of mapping per scan. This
+# survey inserts one scan per metre or 0.3 rad, so a few MB and a few hundredths of a second
+# per write: about 1 % of the mapper's time.
+checkpoint_every=10
+export out bin speed seed start_pose mapper_policy checkpoint_every
 "$MINENAV_ROOT/tests/bus/private_net.sh" --port 7667 -- bash -c '
   set -euo pipefail
   pids=()
@@ -62,7 +71,7 @@ export out bin speed seed start_pose mapper_policy
     2> "$out/vehicle_sim.log" & pids+=($!)
   "$bin/ladar_driver" --world "$out/mine.json" --sensor typhoon --seed "$seed" \
     2> "$out/ladar_driver.log" & pids+=($!)
-  "$bin/contour_mapper" $mapper_policy --checkpoint "$out/mapper.ckpt" \
+  "$bin/contour_mapper" $mapper_policy --checkpoint "$out/mapper.ckpt" --checkpoint-every "$checkpoint_every" \
     --save-map "$out/contour_map.json" 2> "$out/contour_mapper.log" & pids+=($!)
   sleep 1
   echo "== driving the survey (progress below; Ctrl-C stops)"
