@@ -1,6 +1,6 @@
 #pragma once
-// A folder of this test process's own files, removed with everything in it when the object
-// goes out of scope.
+// A folder of this test process's own files (PREFIX_<pid>_<n>, a new n for every object),
+// removed with everything in it when the object goes out of scope.
 
 #include <unistd.h>
 
@@ -13,7 +13,8 @@ namespace minenav::testing {
 class TempDir {
  public:
   explicit TempDir(const std::string& prefix)
-      : path_(std::filesystem::temp_directory_path() / (prefix + "_" + std::to_string(::getpid()))) {
+      : path_(std::filesystem::temp_directory_path() /
+              (prefix + "_" + std::to_string(::getpid()) + "_" + std::to_string(NextNumber()))) {
     std::filesystem::create_directories(path_);
   }
   ~TempDir() {
@@ -27,6 +28,11 @@ class TempDir {
   std::string operator/(const std::string& name) const { return (path_ / name).string(); }
 
  private:
+  static int NextNumber() {
+    static int next = 0;
+    return next++;
+  }
+
   std::filesystem::path path_;
 };
 

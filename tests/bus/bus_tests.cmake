@@ -39,3 +39,29 @@ add_test(NAME bus.vehicle_stops_at_its_stale_limit
   COMMAND "${MINENAV_PRIVATE_NET}" --port 7790 -- $<TARGET_FILE:vehicle_safety_bus_test>
           --gtest_filter=VehicleSafetyBusTest.OneCommandWithAHugeTimeoutStopsAtTheVehiclesStaleLimit)
 set_tests_properties(bus.vehicle_stops_at_its_stale_limit PROPERTIES TIMEOUT 120 LABELS bus)
+
+# Issue 11: hostile input on the bus (array counts that lie, timestamps that lie) against
+# the live contour_mapper and iconic_pose_estimator, each under a memory bound
+# (bus/hostile_input_bus_test.cc; minenav_hostile_support is defined in tests/CMakeLists.txt).
+if(TARGET contour_mapper AND TARGET iconic_pose_estimator AND TARGET log_tool)
+  add_executable(hostile_input_bus_test bus/hostile_input_bus_test.cc)
+  target_include_directories(hostile_input_bus_test PRIVATE "${CMAKE_SOURCE_DIR}")
+  target_link_libraries(hostile_input_bus_test PRIVATE minenav_hostile_support minenav_mapper minenav_node
+                        GTest::gtest_main)
+  target_compile_definitions(hostile_input_bus_test PRIVATE
+    MINENAV_CONTOUR_MAPPER_BIN="$<TARGET_FILE:contour_mapper>"
+    MINENAV_IPE_BIN="$<TARGET_FILE:iconic_pose_estimator>")
+  minenav_warnings(hostile_input_bus_test)
+  set_target_properties(hostile_input_bus_test PROPERTIES RUNTIME_OUTPUT_DIRECTORY "${CMAKE_BINARY_DIR}/tests")
+  add_dependencies(hostile_input_bus_test contour_mapper iconic_pose_estimator)
+  function(minenav_hostile_bus_test name port filter)
+    add_test(NAME ${name}
+      COMMAND "${MINENAV_PRIVATE_NET}" --port ${port} -- $<TARGET_FILE:hostile_input_bus_test> --gtest_filter=${filter})
+    set_tests_properties(${name} PROPERTIES TIMEOUT 180 LABELS bus)
+  endfunction()
+  minenav_hostile_bus_test(bus.hostile_mapper_counts 7795 "ContourMapperScans/HostileCountTest.*")
+  minenav_hostile_bus_test(bus.hostile_ipe_scan_counts 7796 "IpeScans/HostileCountTest.*")
+  minenav_hostile_bus_test(bus.hostile_ipe_map_counts 7797 "IpeMaps/HostileCountTest.*")
+  minenav_hostile_bus_test(bus.hostile_mapper_timestamps 7798 "ContourMapper/HostileTimestampTest.*")
+  minenav_hostile_bus_test(bus.hostile_ipe_timestamps 7799 "Ipe/HostileTimestampTest.*")
+endif()
