@@ -1,52 +1,32 @@
 // log_tool import-carmen and log_tool relations as users run them: small inline inputs
-// with exact answers, the real Intel log, and bad input (exit 2, one line, no output).
+// with exact answers and bad input (exit 2, one line, no output).
 
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 #include <zlib.h>
 
+#include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <map>
 #include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
 
 #include "common/angle.h"
 #include "common/file_io.h"
 #include "common/node/conversions.h"
 #include "common/node/event_log.h"
+#include "logger/log_tool_run.h"
 #include "logger/test_logs.h"
 
 namespace minenav {
 namespace {
 
 using logger_test::FileExists;
+using logger_test::LogTool;
 using logger_test::ReadAll;
+using logger_test::RunResult;
 using logger_test::TempPath;
-
-struct RunResult {
-  int exit_code = -1;
-  std::string out, err;
-};
-
-RunResult LogTool(const std::string& args) {
-  const std::string out = TempPath("stdout.txt"), err = TempPath("stderr.txt");
-  const std::string cmd = std::string(LOG_TOOL_PATH) + " " + args + " >'" + out + "' 2>'" + err + "'";
-  const int status = std::system(cmd.c_str());
-  RunResult r;
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  r.out = ReadAll(out);
-  r.err = ReadAll(err);
-  return r;
-}
-
-std::string Dataset(const std::string& name) {
-  const std::string path = std::string(MINENAV_DATASETS_DIR) + "/" + name;
-  if (!std::filesystem::exists(path))
-    ADD_FAILURE() << "dataset " << path << " is missing (set MINENAV_DATASETS_DIR; see shared/datasets/SOURCES.md)";
-  return path;
-}
 
 std::string WriteText(const std::string& name, const std::string& text) {
   const std::string path = TempPath(name);
@@ -231,32 +211,6 @@ TEST(CarmenCli, RelationsExactSmallCase) {
   const std::string far = WriteText("far.txt", "100 200 1 0 0 0 0 0\n");
   ExpectInputError(LogTool("relations --relations " + far + " --poses " + poses),
                    "nothing scored: no relation has an estimate within", "");
-}
-
-// Intel end to end through the command line: import, info, and the GMapping known answer
-// with the odometry read back from the imported log.
-TEST(CarmenCli, IntelImportAndKnownAnswer) {
-  const std::string lcm = TempPath("intel.lcm");
-  const RunResult imp = LogTool("import-carmen " + Dataset("intel.clf.bz2") + " " + lcm);
-  ASSERT_EQ(imp.exit_code, 0) << imp.err;
-  const RunResult info = LogTool("info --json " + lcm);
-  ASSERT_EQ(info.exit_code, 0) << info.err;
-  const nlohmann::json j = nlohmann::json::parse(info.out);
-  std::map<std::string, int64_t> counts;
-  for (const auto& c : j["channels"]) counts[c["channel"].get<std::string>()] = c["count"].get<int64_t>();
-  EXPECT_EQ(counts["LADAR_SCAN"], 13631);
-  EXPECT_EQ(counts["ODOMETRY"], 26915);
-
-  const std::string json = TempPath("ka.json");
-  const RunResult r = LogTool("relations --relations " + Dataset("intel.relations.txt") + " --poses " +
-                              Dataset("intel-corrected.log.gz") + " --poses-time-shift 976052857.337284 --odometry " +
-                              lcm + " --json-out " + json);
-  ASSERT_EQ(r.exit_code, 0) << r.err;
-  const nlohmann::json s = nlohmann::json::parse(ReadAll(json));
-  EXPECT_EQ(s["n"], 2984);
-  EXPECT_NEAR(s["translation_m"]["mean"].get<double>(), 0.075, 0.005);
-  EXPECT_NEAR(s["translation_m"]["std"].get<double>(), 0.086, 0.005);
-  std::filesystem::remove(lcm);
 }
 
 }  // namespace
