@@ -9,6 +9,30 @@
 
 namespace minenav::mapper {
 
+std::string CheckContourGeometry(const std::vector<Eigen::Vector2d>& points, bool closed) {
+  for (size_t i = 0; i < points.size(); ++i) {
+    const Eigen::Vector2d& p = points[i];
+    if (!std::isfinite(p.x()) || !std::isfinite(p.y())) return "point " + std::to_string(i) + " is not finite";
+    if (std::abs(p.x()) > kMaxMapCoordinate || std::abs(p.y()) > kMaxMapCoordinate) {
+      std::ostringstream why;
+      why << "point " << i << " (" << p.x() << ", " << p.y() << ") is farther than " << kMaxMapCoordinate
+          << " m from the origin";
+      return why.str();
+    }
+  }
+  const size_t segments = points.size() < 2 ? 0 : (closed ? points.size() : points.size() - 1);
+  for (size_t k = 0; k < segments; ++k) {
+    const double length = (points[(k + 1) % points.size()] - points[k]).norm();
+    if (length > kMaxSegmentLength) {
+      std::ostringstream why;
+      why << "segment " << k << " is " << length << " m long, more than the " << kMaxSegmentLength
+          << " m a contour segment may be";
+      return why.str();
+    }
+  }
+  return "";
+}
+
 ContourMap ParseContourMapJson(const std::string& text, const std::string& source, double grid_cell_size) {
   nlohmann::json j;
   try {
@@ -45,6 +69,7 @@ ContourMap ParseContourMapJson(const std::string& text, const std::string& sourc
     if (points.size() < (closed ? 3u : 2u))
       throw InputError(where + ": " + std::to_string(points.size()) + " points, need at least " +
                        (closed ? "3 for a closed contour" : "2"));
+    if (const std::string why = CheckContourGeometry(points, closed); !why.empty()) throw InputError(where + ": " + why);
     map.Create(std::move(points), closed);
   }
   return map;

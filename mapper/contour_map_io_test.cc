@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 
@@ -63,6 +64,28 @@ TEST(ContourMapIoTest, RejectsBadInputWithOneLine) {
     EXPECT_EQ(e.rfind("map.json", 0), 0u) << e;
   }
   EXPECT_NE(ErrorOf(R"({"contours": [{"closed": false, "points": [[0,0]]}]})").find("contour 0"), std::string::npos);
+}
+
+// Issue 11, item 7: this 66-byte map made the segment grid visit every 2 m cell of a 20 km
+// box (6 GB, 18-39 s, then bad_alloc). It is refused at once, in one line naming what.
+TEST(ContourMapIoTest, RefusesAbsurdGeometryQuicklyInOneLine) {
+  const std::string twenty_km = R"({"contours": [{"closed": false, "points": [[0, 0], [20000, 20000]]}]})";
+  const auto t0 = std::chrono::steady_clock::now();
+  const std::string e = ErrorOf(twenty_km);
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 0.1);
+  EXPECT_EQ(e, "map.json: contour 0: segment 0 is 28284.3 m long, more than the 1000 m a contour segment may be");
+  // The closing segment of a closed contour counts too; so do far-off vertices.
+  EXPECT_NE(ErrorOf(R"({"contours": [{"closed": true, "points": [[0, 0], [900, 0], [900, 900]]}]})")
+                .find("contour 0: segment 2 is 1272.79 m long"),
+            std::string::npos);
+  EXPECT_NE(ErrorOf(R"({"contours": [{"points": [[0, 0], [1, 0]]}, {"points": [[3e7, 0], [3e7, 1]]}]})")
+                .find("contour 1: point 0 (3e+07, 0) is farther than 1e+07 m from the origin"),
+            std::string::npos);
+  // At the limits: a 1000 m straight rib drawn as one segment, UTM-sized coordinates.
+  const ContourMap ok = ParseContourMapJson(
+      R"({"contours": [{"points": [[0, 0], [1000, 0]]}, {"points": [[500000, 6000000], [500000.5, 6000000]]}]})", "ok");
+  EXPECT_EQ(ok.NumSegments(), 2);
+  EXPECT_EQ(CheckContourGeometry({{0, 0}, {3, 4}}, false), "");
 }
 
 }  // namespace

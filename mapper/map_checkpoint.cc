@@ -5,6 +5,7 @@
 #include <set>
 
 #include "common/file_io.h"
+#include "mapper/contour_map_io.h"
 
 namespace minenav::mapper {
 
@@ -12,6 +13,9 @@ namespace {
 
 constexpr char kMagic[8] = {'M', 'N', 'C', 'L', 'U', 'E', 'C', 'K'};
 constexpr uint32_t kVersion = 1;
+// m; scan points and the sensor lie within this of the vehicle (no ladar sees farther):
+// more is a forged or corrupt checkpoint, like a contour beyond contour_map_io.h's limits.
+constexpr double kMaxScanPointRange = 1000.0;
 
 uint64_t Fnv1a(const char* data, size_t size) {
   uint64_t h = 1469598103934665603ull;
@@ -93,7 +97,18 @@ class Reader {
   Pose2 Pose(const char* what) {
     const double x = F64(what), y = F64(what), theta = F64(what);
     if (std::abs(theta) > 4.0) Fail(std::string("heading out of range in ") + what);
+    if (std::abs(x) > kMaxMapCoordinate || std::abs(y) > kMaxMapCoordinate)
+      Fail(std::string("position farther than ") + std::to_string(static_cast<int64_t>(kMaxMapCoordinate)) +
+           " m from the origin in " + what);
     return {x, y, theta};
+  }
+  // A point in the vehicle frame: within kMaxScanPointRange of the vehicle.
+  Eigen::Vector2d ScanPoint(const char* what) {
+    const Eigen::Vector2d p = Point(what);
+    if (p.norm() > kMaxScanPointRange)
+      Fail(std::string(what) + " " + std::to_string(p.norm()) + " m from the vehicle, more than " +
+           std::to_string(static_cast<int>(kMaxScanPointRange)) + " m");
+    return p;
   }
   bool AtEnd() const { return pos_ == end_; }
 
@@ -198,13 +213,15 @@ MapperCheckpoint DecodeCheckpoint(const std::string& bytes, const std::string& s
     if (n < (contour.closed ? 3u : 2u)) r.Fail("contour " + std::to_string(contour.id) + " has too few points");
     contour.points.reserve(n);
     for (size_t k = 0; k < n; ++k) contour.points.push_back(r.Point("contour point"));
+    if (const std::string why = CheckContourGeometry(contour.points, contour.closed); !why.empty())
+      r.Fail("contour " + std::to_string(contour.id) + ": " + why);
     c.contours.push_back(std::move(contour));
   }
   const size_t num_scans = r.Count("scans", 53);
   for (size_t i = 0; i < num_scans; ++i) {
     MappedScan s;
     s.scan.utime = r.I64("scan utime");
-    s.scan.sensor_position = r.Point("sensor position");
+    s.scan.sensor_position = r.ScanPoint("sensor position");
     s.pose = r.Pose("scan pose");
     s.fixed = r.Bool("scan fixed flag");
     const size_t num_partial = r.Count("partial scans", 12);
@@ -214,7 +231,7 @@ MapperCheckpoint DecodeCheckpoint(const std::string& bytes, const std::string& s
       p.last_index = r.I32("partial scan index");
       const size_t n = r.Count("partial scan points", 16);
       p.points.reserve(n);
-      for (size_t q = 0; q < n; ++q) p.points.push_back(r.Point("scan point"));
+      for (size_t q = 0; q < n; ++q) p.points.push_back(r.ScanPoint("scan point"));
       s.scan.partial_scans.push_back(std::move(p));
     }
     c.scans.push_back(std::move(s));

@@ -8,7 +8,9 @@
 // Format (little-endian, doubles as their IEEE bits so a round trip is bit-exact):
 //   8 bytes magic "MNCLUECK", u32 version (1), u64 payload size, payload, u64 FNV-1a hash
 //   of the payload. Loading validates the magic, version, sizes, hash and every value
-//   (finite numbers, contour sizes, unique ids below next_id, indices in range) and throws
+//   (finite numbers, contour sizes, unique ids below next_id, indices in range; contour
+//   geometry within contour_map_io.h's limits, positions within kMaxMapCoordinate, scan
+//   points within 1 km of their vehicle: what no survey makes is refused) and throws
 //   InputError with one line naming the file and what is wrong. Saving is atomic
 //   (WriteFileAtomically): a crash mid-write leaves the previous checkpoint.
 

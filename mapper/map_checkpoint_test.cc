@@ -172,6 +172,18 @@ TEST_F(MapCheckpointTest, DamagedFilesGiveOneLineErrors) {
   bad = CheckpointOf(session_);
   bad.scans[1].pose.x = std::nan("");
   expect_error(EncodeCheckpoint(bad), "non-finite");
+  // Forged geometry (issue 11, item 7): a 20 km contour segment, a scan point 5 km away, a
+  // pose beyond 10 000 km. Refused before any of it reaches the segment grid.
+  bad = CheckpointOf(session_);
+  bad.contours.front().points.back() = Eigen::Vector2d(20000, 20000);
+  expect_error(EncodeCheckpoint(bad), "contour " + std::to_string(bad.contours.front().id) + ": segment");
+  expect_error(EncodeCheckpoint(bad), "m long, more than the 1000 m a contour segment may be");
+  bad = CheckpointOf(session_);
+  bad.scans[2].scan.partial_scans.front().points.front() = Eigen::Vector2d(3000, 4000);
+  expect_error(EncodeCheckpoint(bad), "scan point 5000.000000 m from the vehicle, more than 1000 m");
+  bad = CheckpointOf(session_);
+  bad.session.poses.back().pose.y = -2e7;
+  expect_error(EncodeCheckpoint(bad), "position farther than 10000000 m from the origin in pose row");
   // Nothing was ever partly written: an atomic save over an existing file replaces it whole.
   const std::string path = (dir_ / "ck.bin").string();
   std::ofstream(path) << "old";

@@ -1,6 +1,7 @@
 #include "pose_estimator/correspondence.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 #include "pose_estimator/brute_force_correspondence.h"
@@ -36,9 +37,26 @@ double ChooseCellSize(const std::vector<Segment>& segments) {
   return std::clamp(0.5 * *mid, 0.03, 1.0);
 }
 
+double CellSizeWithinBudget(const std::vector<Segment>& segments, double cell, double margin) {
+  if (segments.empty()) return cell;
+  Eigen::Vector2d lo = segments.front().a, hi = lo;
+  for (const Segment& s : segments) {
+    lo = lo.cwiseMin(s.a).cwiseMin(s.b);
+    hi = hi.cwiseMax(s.a).cwiseMax(s.b);
+  }
+  const Eigen::Vector2d extent = (hi - lo).array() + 2.0 * margin;
+  // Cells along each side (with the frame's one-cell border), and the cell that fits the budget.
+  const double cells = (extent.x() / cell + 3.0) * (extent.y() / cell + 3.0);
+  if (!(cells > kMaxGridCells)) return cell;
+  return std::max(cell, std::sqrt(extent.x() * extent.y() / kMaxGridCells) * 1.01 + 3.0 * cell);
+}
+
 std::unique_ptr<CorrespondenceSearch> MakeCorrespondenceSearch(std::vector<Segment> segments,
                                                                const CorrespondenceOptions& options) {
-  const double cell = options.cell_size > 0.0 ? options.cell_size : ChooseCellSize(segments);
+  // A map a few hundred metres across fits the chosen cell; a far larger one (or one
+  // hostile segment kilometres long) gets coarser cells instead of gigabytes of grid.
+  const double cell = CellSizeWithinBudget(
+      segments, options.cell_size > 0.0 ? options.cell_size : ChooseCellSize(segments), options.max_distance);
   switch (options.method) {
     case CorrespondenceMethod::kBruteForce:
       return std::make_unique<BruteForceCorrespondence>(std::move(segments));

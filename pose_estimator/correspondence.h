@@ -87,6 +87,13 @@ void FindCorrespondences(const CorrespondenceSearch& search, const std::vector<E
 // Default cell size for a map (m): half the median segment length clamped to [0.03, 1].
 double ChooseCellSize(const std::vector<Segment>& segments);
 
+// Most cells a correspondence grid may have (each holds a few candidate lists): bounds the
+// memory one map message can cost (issue 11: one 20 km segment must not allocate GBs).
+inline constexpr double kMaxGridCells = 4e6;
+// `cell`, or the smallest larger cell that keeps the grid over `segments` (grown by
+// `margin` m on every side) within kMaxGridCells.
+double CellSizeWithinBudget(const std::vector<Segment>& segments, double cell, double margin);
+
 // A segment with what every distance query needs precomputed; all three searches use the
 // same kernel so that Table 9 compares search strategies, not arithmetic.
 struct PreparedSegment {

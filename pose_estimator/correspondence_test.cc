@@ -145,5 +145,27 @@ TEST(SegmentMapTest, UnusableMapHasAReason) {
   EXPECT_FALSE(PrepareSegmentMap({}).problem.empty());
 }
 
+// Issue 11, item 7: one 20 km segment in a map message sized the grid to its extent (GBs).
+// The grid's cells grow instead; the answers stay the brute-force answers.
+TEST(CorrespondenceTest, AHugeMapGetsCoarserCellsNotGigabytes) {
+  std::vector<Segment> map = RandomSegments(200, 7, 20.0, 1.0);
+  map.emplace_back(Eigen::Vector2d(0, 0), Eigen::Vector2d(20'000, 20'000));
+  const double cell = CellSizeWithinBudget(map, ChooseCellSize(map), 0.5);
+  EXPECT_GT(cell, 5.0);
+  const double side = 20'001.0 / cell + 3.0;
+  EXPECT_LE(side * side, kMaxGridCells * 1.1);
+  EXPECT_DOUBLE_EQ(CellSizeWithinBudget(RandomSegments(50, 3, 20.0, 1.0), 0.2, 0.5), 0.2);  // small maps keep theirs
+  CorrespondenceOptions options;
+  options.max_distance = 0.5;
+  const auto search = MakeCorrespondenceSearch(map, options);
+  BruteForceCorrespondence brute(map);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(0.0, 20.0);
+  for (int i = 0; i < 2000; ++i) {
+    const Eigen::Vector2d p(u(rng), u(rng));
+    ASSERT_EQ(search->Nearest(p, 0.5).segment, brute.Nearest(p, 0.5).segment) << p.transpose();
+  }
+}
+
 }  // namespace
 }  // namespace minenav
