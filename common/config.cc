@@ -218,6 +218,7 @@ void ConfigSchema::Set(const std::string& key, const std::string& text, const st
   Entry* e = Find(key);
   if (!e) throw UsageError(where + ": unknown option '" + key + "' (see --help)");
   e->set(text, where);
+  set_keys_.insert(e->key);
 }
 
 void ConfigSchema::LoadFile(const std::string& path) {

@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <functional>
 #include <limits>
+#include <set>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -73,6 +74,9 @@ class ConfigSchema {
   void LoadFile(const std::string& path);             // key = value lines
   void Set(const std::string& key, const std::string& text, const std::string& where);
 
+  // True when `key` was given in a config file or on the command line (not its default).
+  bool WasSet(const std::string& key) const { return set_keys_.count(key) > 0; }
+
   std::string HelpText() const;
   std::string ConfigText() const;  // the effective configuration in file syntax
   const std::vector<std::string>& positional() const { return positional_; }
@@ -93,6 +97,7 @@ class ConfigSchema {
   std::string positional_usage_;
   size_t positional_min_ = 0, positional_max_ = 0;
   std::vector<std::string> positional_;
+  std::set<std::string> set_keys_;
 };
 
 // Parses "0.33", "3.33deg" or "0.1rad" into radians when `angle` is true; plain doubles

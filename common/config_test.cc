@@ -107,4 +107,14 @@ TEST(ConfigTest, NumberLists) {
 }
 
 }  // namespace
+TEST(ConfigSchemaTest, WasSetTellsGivenKeysFromDefaults) {
+  ConfigSchema schema("t", "test");
+  int every = 10, other = 1;
+  schema.AddInt("checkpoint_every", &every, "n");
+  schema.AddInt("other", &other, "n");
+  schema.Parse({"--checkpoint-every", "10"});
+  EXPECT_TRUE(schema.WasSet("checkpoint_every"));  // given, even though equal to the default
+  EXPECT_FALSE(schema.WasSet("other"));
+}
+
 }  // namespace minenav

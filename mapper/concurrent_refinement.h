@@ -50,6 +50,10 @@ struct ConcurrentRefinementOptions {
   double min_relative_decrease = 1e-3;
   // m; correspondence threshold used to measure the total error.
   double evaluation_threshold = 0.2;
+  // Asked between scans, rounds and registrations (loop_closure.h ShouldStop): once it says
+  // yes the refinement returns within one step (one scan's pose, one registration, one
+  // whole-map fit), the round under way undone. Empty (default): run to the end.
+  ShouldStop should_stop;
 };
 
 std::string ValidateOptions(const ConcurrentRefinementOptions& options);
@@ -59,6 +63,7 @@ double TotalError(const std::vector<MappedScan>& scans, const ContourMap& map, d
 
 struct ConcurrentRefinementResult {
   bool converged = false;
+  bool stopped = false;  // should_stop said yes: poses and map as after the last kept round
   std::string reason;
   int rounds = 0;                   // rounds kept
   std::vector<double> total_error;  // m^3, before the first round and after each kept round

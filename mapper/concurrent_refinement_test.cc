@@ -111,5 +111,74 @@ TEST(ConcurrentRefinementTest, AlternationAloneClosesALoopPartly) {
                                      << r.rounds << " (" << r.reason << ")";
 }
 
+// Issue 11, item 12: a stop request (the node hands NodeRuntime::StopSignalled) must end a
+// long refinement at once. The stop test says yes from its n-th question on; the refinement
+// must return on that very question, report stopped, and leave poses and map as after its
+// last kept step: as they were when it stops in the pose-graph step, with the closed loop
+// and no half-done round when it stops in round 1.
+TEST(ConcurrentRefinementTest, AStopRequestEndsItAtOnceLeavingTheMapConsistent) {
+  ContourMap map;
+  double before = 0, h_before = 0;
+  const std::vector<MappedScan> start = BuildDriftedLoop(1440, 15.0, 0.02, map, &before, &h_before);
+  const ContourMap start_map = map;
+  const double start_error = TotalError(start, start_map, 0.2);
+  // Questions asked by an uninterrupted run: one per registration, pose-graph pass, scan
+  // measured and scan refined, so no step between two is longer than one of those.
+  ConcurrentRefinementOptions o;
+  o.max_rounds = 4;
+  o.loop_closure.max_pair_distance = 15.0;
+  int questions = 0, questions_in_loop_closure = 0, registrations = 0;
+  o.should_stop = [&] {
+    ++questions;
+    return false;
+  };
+  {
+    std::vector<MappedScan> scans = start;
+    ContourMap m = start_map;
+    const ConcurrentRefinementResult full = RefineConcurrently(scans, m, o);
+    EXPECT_FALSE(full.stopped);
+    ASSERT_TRUE(full.loop_closure.applied) << full.loop_closure.reason;
+    ASSERT_GE(full.rounds, 1) << full.reason;
+    const int n = static_cast<int>(scans.size());
+    registrations = full.loop_closure.pairs_tried;
+    // Measured: 132 questions, 29 of them registrations, in 1.1 s.
+    EXPECT_GE(questions, n + registrations + 1 + n + full.rounds * 2 * n);
+    // Up to the first round: the total error (one per scan), the registrations, at most
+    // max_gate_passes passes, one before applying, the error after the closure.
+    questions_in_loop_closure = n + registrations + o.loop_closure.max_gate_passes + 1 + n;
+  }
+  // A round asks 2n questions (one before it, one per free scan, one per scan measured).
+  for (const int stop_at : {1, 2, 10 + registrations / 2, questions_in_loop_closure + 3}) {
+    std::vector<MappedScan> scans = start;
+    ContourMap m = start_map;
+    int asked = 0, asked_after_yes = 0;
+    o.should_stop = [&] {
+      ++asked;
+      if (asked > stop_at) ++asked_after_yes;
+      return asked >= stop_at;
+    };
+    const ConcurrentRefinementResult r = RefineConcurrently(scans, m, o);
+    EXPECT_TRUE(r.stopped) << stop_at << ": " << r.reason;
+    EXPECT_EQ(asked_after_yes, 0) << stop_at << ": asked again after the stop request";
+    EXPECT_NE(r.reason.find("stopped"), std::string::npos) << r.reason;
+    EXPECT_EQ(r.rounds, 0);
+    if (stop_at > questions_in_loop_closure) {
+      // In round 1: the closed loop is kept, the round under way undone.
+      EXPECT_TRUE(r.loop_closure.applied) << stop_at << ": " << r.loop_closure.reason;
+      EXPECT_LT(TotalError(scans, m, 0.2), start_error);
+      double h_after = 0;
+      EXPECT_LT(MaxPoseError(scans, LoopStations(), &h_after), 0.08);
+      continue;
+    }
+    EXPECT_FALSE(r.loop_closure.applied);
+    for (size_t k = 0; k < scans.size(); ++k) {
+      EXPECT_EQ(scans[k].pose.x, start[k].pose.x) << stop_at << " scan " << k;
+      EXPECT_EQ(scans[k].pose.theta, start[k].pose.theta) << stop_at << " scan " << k;
+    }
+    ASSERT_EQ(m.NumContours(), start_map.NumContours()) << stop_at;
+    for (const auto& [id, c] : start_map.contours()) EXPECT_EQ(m.Get(id).points, c.points) << stop_at;
+  }
+}
+
 }  // namespace
 }  // namespace minenav::mapper

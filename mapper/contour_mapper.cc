@@ -126,4 +126,10 @@ InsertResult ContourMapper::InsertPreprocessed(PreprocessedScan scan, const Pose
 
 ConcurrentRefinementResult ContourMapper::Refine() { return RefineConcurrently(scans_, map_, options_.refinement); }
 
+ConcurrentRefinementResult ContourMapper::Refine(const ShouldStop& should_stop) {
+  ConcurrentRefinementOptions options = options_.refinement;
+  options.should_stop = should_stop;
+  return RefineConcurrently(scans_, map_, options);
+}
+
 }  // namespace minenav::mapper

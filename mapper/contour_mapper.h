@@ -88,8 +88,11 @@ class ContourMapper {
   InsertResult InsertPreprocessed(PreprocessedScan scan, const Pose2& initial_world_T_vehicle,
                                   const InsertOptions& insert = {});
 
-  // Concurrent refinement of every pose and contour (4.7).
+  // Concurrent refinement of every pose and contour (4.7), stopped early when
+  // options().refinement.should_stop says so.
   ConcurrentRefinementResult Refine();
+  // The same with another stop test in place of the options' (empty: run to the end).
+  ConcurrentRefinementResult Refine(const ShouldStop& should_stop);
 
   // Replaces the map (e.g. loaded from a file); scans are kept.
   void SetMap(ContourMap map) { map_ = std::move(map); }

@@ -68,7 +68,7 @@ std::vector<Eigen::Vector2d> StridedPoints(const PreprocessedScan& scan, int str
 }  // namespace
 
 std::vector<ScanPairEdge> RegisterScanPairs(const std::vector<MappedScan>& scans, const LoopClosureOptions& o,
-                                            int* pairs_tried) {
+                                            int* pairs_tried, const ShouldStop& should_stop) {
   std::vector<ScanPairEdge> out;
   int tried = 0;
   const size_t n = scans.size();
@@ -105,12 +105,18 @@ std::vector<ScanPairEdge> RegisterScanPairs(const std::vector<MappedScan>& scans
         pair[i][j] = true;
       }
   }
-  for (size_t i = 0; i < n; ++i) {
+  bool stopped = false;
+  for (size_t i = 0; i < n && !stopped; ++i) {
     // One lookup table per scan, in its own frame, built only if some later scan pairs with it.
     std::unique_ptr<LookupTableCorrespondence> table;
     if (pair[i].empty()) continue;
     for (size_t j = i + 1; j < n; ++j) {
       if (!pair[i][j]) continue;
+      // A registration takes milliseconds; thousands of them take minutes on a long run.
+      if (should_stop && should_stop()) {
+        stopped = true;
+        break;
+      }
       if (points[j].size() < 10) continue;
       if (!table) {
         std::vector<Segment> segments = RawPolylines(scans[i].scan);
@@ -242,13 +248,25 @@ void CarryContoursWithScans(const std::vector<MappedScan>& scans, const std::vec
 }
 
 LoopClosureResult CloseLoops(std::vector<MappedScan>& scans, ContourMap& map, const LoopClosureOptions& o,
-                             const ContourFittingOptions& fitting, const RedundantContourOptions& redundant) {
+                             const ContourFittingOptions& fitting, const RedundantContourOptions& redundant,
+                             const ShouldStop& should_stop) {
   LoopClosureResult out;
   if (scans.size() < 2) {
     out.reason = "fewer than 2 scans";
     return out;
   }
-  const std::vector<ScanPairEdge> registered = RegisterScanPairs(scans, o, &out.pairs_tried);
+  // Once it said yes, the answer is kept: asked again, a caller's test is not asked twice.
+  bool said_yes = false;
+  const ShouldStop stop_latched = [&] { return said_yes = said_yes || (should_stop && should_stop()); };
+  auto stopped = [&](const char* where) {
+    if (!stop_latched()) return false;
+    out.stopped = true;
+    out.reason = std::string("stopped ") + where + " (" + std::to_string(out.pairs_tried) +
+                 " pairs registered): nothing changed";
+    return true;
+  };
+  const std::vector<ScanPairEdge> registered = RegisterScanPairs(scans, o, &out.pairs_tried, stop_latched);
+  if (stopped("while registering scan pairs")) return out;
   std::vector<Pose2> old_poses;
   std::vector<bool> fixed;
   bool any_fixed = false;
@@ -270,6 +288,7 @@ LoopClosureResult CloseLoops(std::vector<MappedScan>& scans, ContourMap& map, co
   std::vector<PoseGraphEdge> kept;
   for (const ScanPairEdge& e : registered) kept.push_back(e.edge);
   for (int pass = 1; pass <= o.max_gate_passes; ++pass) {
+    if (stopped("between pose-graph passes")) return out;
     std::vector<PoseGraphEdge> edges = priors;
     edges.insert(edges.end(), kept.begin(), kept.end());
     out.graph = OptimizePoseGraph(old_poses, fixed, edges, o.graph);
@@ -312,6 +331,7 @@ LoopClosureResult CloseLoops(std::vector<MappedScan>& scans, ContourMap& map, co
     out.reason = why.str() + ": no loop to close, map left as it is";
     return out;
   }
+  if (stopped("before applying the pose graph")) return out;
   for (size_t k = 0; k < scans.size(); ++k) scans[k].pose = out.graph.poses[k];
   CarryContoursWithScans(scans, old_poses, map, o.observation_threshold);
   RemoveRedundantContours(map, redundant);

@@ -25,6 +25,7 @@
 // periodically (ContourMapper::Refine every few scans) so that the drift accumulated since
 // the last closure stays inside that basin.
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -35,6 +36,12 @@
 #include "mapper/redundant_contours.h"
 
 namespace minenav::mapper {
+
+// A caller's "should this computation stop now?" test (a stop request, a deadline; the
+// library knows nothing of signals). Long loops ask it between iterations and, once it says
+// yes, return soon with their inputs left consistent. It must keep saying yes once it has.
+// Empty: never stop.
+using ShouldStop = std::function<bool()>;
 
 // Graph options for loop closure: Huber beyond 3σ, so a false registration that slipped
 // through the checks bends the solution little before the gate drops it.
@@ -114,8 +121,9 @@ struct ScanPairEdge {
 
 // Registers every pair of scans within options.max_pair_distance (current poses) and returns
 // the accepted registrations. *pairs_tried (if given) counts the registrations attempted.
+// should_stop is asked before each registration: once it says yes, the edges so far return.
 std::vector<ScanPairEdge> RegisterScanPairs(const std::vector<MappedScan>& scans, const LoopClosureOptions& options,
-                                            int* pairs_tried = nullptr);
+                                            int* pairs_tried = nullptr, const ShouldStop& should_stop = {});
 
 // Moves every contour vertex with the scans that observe it from old_poses to the scans'
 // current poses (see 4. above).
@@ -124,6 +132,7 @@ void CarryContoursWithScans(const std::vector<MappedScan>& scans, const std::vec
 
 struct LoopClosureResult {
   bool applied = false;  // poses and contours were changed
+  bool stopped = false;  // should_stop said yes: nothing was changed
   std::string reason;
   int pairs_tried = 0;
   int edges = 0;           // registration edges kept
@@ -136,7 +145,10 @@ struct LoopClosureResult {
 };
 
 // Steps 1-4 above on the scans and map; `fitting` and `redundant` are used for the refit.
+// should_stop is asked between registrations and between the graph's passes; stopped, the
+// scans and the map are left as they were (the refit of step 4, once begun, completes).
 LoopClosureResult CloseLoops(std::vector<MappedScan>& scans, ContourMap& map, const LoopClosureOptions& options,
-                             const ContourFittingOptions& fitting, const RedundantContourOptions& redundant);
+                             const ContourFittingOptions& fitting, const RedundantContourOptions& redundant,
+                             const ShouldStop& should_stop = {});
 
 }  // namespace minenav::mapper

@@ -179,9 +179,16 @@ ScanResult MappingSession::AddScan(const LadarScan& scan, const Pose2& odometry)
   return out;
 }
 
-ConcurrentRefinementResult MappingSession::Refine() {
-  ConcurrentRefinementResult r = mapper_.Refine();
-  state_.inserts_since_refine = 0;
+ConcurrentRefinementResult MappingSession::Refine() { return AfterRefine(mapper_.Refine()); }
+
+ConcurrentRefinementResult MappingSession::Refine(const ShouldStop& should_stop) {
+  return AfterRefine(mapper_.Refine(should_stop));
+}
+
+ConcurrentRefinementResult MappingSession::AfterRefine(ConcurrentRefinementResult r) {
+  // A stopped refinement is still due: a run resumed from a checkpoint of this state does
+  // it at its next insert.
+  if (!r.stopped) state_.inserts_since_refine = 0;
   // The next initial estimate composes onto the anchor's refined pose.
   if (state_.anchor_scan_index >= 0)
     state_.anchor_pose = mapper_.scans()[static_cast<size_t>(state_.anchor_scan_index)].pose;

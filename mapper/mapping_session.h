@@ -95,8 +95,12 @@ class MappingSession {
 
   // One scan with the odometry pose (odometry frame) at its utime.
   ScanResult AddScan(const LadarScan& scan, const Pose2& odometry);
-  // Concurrent refinement of every inserted pose and contour (4.7).
+  // Concurrent refinement of every inserted pose and contour (4.7); the periodic one of
+  // AddScan too stops early when options().mapper.refinement.should_stop says so (a stopped
+  // refinement leaves the state as after its last kept round and does not count as done).
   ConcurrentRefinementResult Refine();
+  // The same with another stop test in place of the options' (empty: run to the end).
+  ConcurrentRefinementResult Refine(const ShouldStop& should_stop);
 
   const MappingSessionOptions& options() const { return options_; }
   const ContourMapper& mapper() const { return mapper_; }
@@ -108,6 +112,7 @@ class MappingSession {
 
  private:
   ScanResult Track(PreprocessedScan scan, ScanResult out) const;
+  ConcurrentRefinementResult AfterRefine(ConcurrentRefinementResult r);
 
   MappingSessionOptions options_;
   ContourMapper mapper_;

@@ -149,6 +149,41 @@ TEST(MappingSessionTest, RefinesEveryNInsertsAndKeepsTheAnchorOnTheRefinedPose) 
   EXPECT_EQ(session.state().inserts_since_refine, 0);
 }
 
+// A stop request during the periodic refinement (the live mapper told to stop while a scan
+// is being refined): the refinement returns at once, the scan stays inserted, the poses are
+// those before the refinement, and the refinement is still due (a checkpoint of this state
+// resumes with it).
+TEST(MappingSessionTest, AStoppedPeriodicRefinementLeavesTheScanInsertedAndStillDue) {
+  const std::vector<Pose2> odo = DriftingOdometry(kStations);
+  bool stop = false;
+  int asked_while_stopping = 0;
+  MappingSessionOptions o;
+  o.refine_every_inserts = 3;
+  o.mapper.refinement.max_rounds = 2;
+  o.mapper.refinement.should_stop = [&] {
+    asked_while_stopping += stop ? 1 : 0;
+    return stop;
+  };
+  MappingSession session(o);
+  for (size_t k = 0; k < 3; ++k) {
+    stop = k == 2;  // the third insert triggers the refinement, and the stop is requested
+    const ScanResult r = session.AddScan(NoisyScan(kStations[k], static_cast<unsigned>(k + 1), static_cast<int64_t>(k)), odo[k]);
+    ASSERT_EQ(r.outcome, ScanOutcome::kInserted) << r.reason;
+    EXPECT_EQ(r.refined, k == 2);
+    if (k == 2) {
+      EXPECT_TRUE(r.refinement.stopped) << r.refinement.reason;
+      EXPECT_EQ(asked_while_stopping, 1);  // returned on the first question after the request
+      EXPECT_EQ(r.refinement.rounds, 0);
+      EXPECT_LT(TranslationDistance(r.pose, kStations[k]), 0.02);
+    }
+  }
+  EXPECT_EQ(session.mapper().scans().size(), 3u);
+  EXPECT_EQ(session.state().inserts_since_refine, 3);
+  // Without the request it runs and counts as done.
+  EXPECT_FALSE(session.Refine({}).stopped);
+  EXPECT_EQ(session.state().inserts_since_refine, 0);
+}
+
 TEST(MappingSessionTest, RefusesBadScansLeavesTheMapAndGoesOn) {
   const std::vector<Pose2> odo = DriftingOdometry(kStations);
   MappingSession session;

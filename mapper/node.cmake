@@ -35,3 +35,28 @@ if(EXISTS "${CMAKE_SOURCE_DIR}/tests/child_process.cc")
     COMMAND "${CMAKE_SOURCE_DIR}/tests/bus/private_net.sh" --port 7760 -- $<TARGET_FILE:contour_mapper_live_test>)
   set_tests_properties(mapper.live_replay_restart_bad_input PROPERTIES TIMEOUT 900 LABELS bus)
 endif()
+
+# The live process fed faster than it maps (issue 11): a bounded queue that counts its drops,
+# and a stop with a backlog that exits at once. Each test on its own port.
+if(EXISTS "${CMAKE_SOURCE_DIR}/tests/child_process.cc")
+  add_executable(contour_mapper_live_stop_test
+    ${CMAKE_CURRENT_LIST_DIR}/contour_mapper_live_stop_test.cc "${CMAKE_SOURCE_DIR}/tests/child_process.cc")
+  target_include_directories(contour_mapper_live_stop_test PRIVATE "${CMAKE_SOURCE_DIR}")
+  target_link_libraries(contour_mapper_live_stop_test PRIVATE minenav_mapping_session minenav_node GTest::gtest_main)
+  minenav_warnings(contour_mapper_live_stop_test)
+  set_target_properties(contour_mapper_live_stop_test PROPERTIES RUNTIME_OUTPUT_DIRECTORY "${CMAKE_BINARY_DIR}/tests")
+  target_compile_definitions(contour_mapper_live_stop_test PRIVATE
+    MINENAV_CONTOUR_MAPPER_BIN="$<TARGET_FILE:contour_mapper>")
+  add_dependencies(contour_mapper_live_stop_test contour_mapper)
+  add_test(NAME mapper.live_backlog_bounded
+    COMMAND "${CMAKE_SOURCE_DIR}/tests/bus/private_net.sh" --port 7791 --
+            $<TARGET_FILE:contour_mapper_live_stop_test> --gtest_filter=ContourMapperLiveStopTest.ABacklogIsBoundedAndEveryDropIsCounted)
+  add_test(NAME mapper.live_stop_with_backlog
+    COMMAND "${CMAKE_SOURCE_DIR}/tests/bus/private_net.sh" --port 7792 --
+            $<TARGET_FILE:contour_mapper_live_stop_test> --gtest_filter=ContourMapperLiveStopTest.SigtermWithABacklogExitsAtOnceAndTheCheckpointKeepsTheInsertedScans)
+  add_test(NAME mapper.live_kill9_keeps_the_checkpoint
+    COMMAND "${CMAKE_SOURCE_DIR}/tests/bus/private_net.sh" --port 7793 --
+            $<TARGET_FILE:contour_mapper_live_stop_test> --gtest_filter=ContourMapperLiveStopTest.KillNineWithTheDefaultOptionsLosesAtMostTheLastFewScans)
+  set_tests_properties(mapper.live_backlog_bounded mapper.live_stop_with_backlog mapper.live_kill9_keeps_the_checkpoint
+                       PROPERTIES TIMEOUT 300 LABELS bus)
+endif()
