@@ -1,15 +1,22 @@
 #include "pose_estimator/feature_pose_estimator.h"
 
-#include <chrono>
 #include <algorithm>
 #include <cmath>
 
 namespace minenav {
 namespace {
 
-double SecondsSince(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
+// Seconds of the caller's stage clock (0 when there is none: the library reads no clock).
+class StageTimer {
+ public:
+  explicit StageTimer(const std::function<double()>& clock) : clock_(clock) { Restart(); }
+  void Restart() { start_ = clock_ ? clock_() : 0.0; }
+  double Seconds() const { return clock_ ? clock_() - start_ : 0.0; }
+
+ private:
+  const std::function<double()>& clock_;
+  double start_ = 0.0;
+};
 
 // Covariance of map_T_vehicle = map_T_sensor * sensor_T_vehicle from that of map_T_sensor.
 Eigen::Matrix3d VehicleCovariance(const Eigen::Matrix3d& sensor_cov, const Pose2& map_T_sensor,
@@ -78,6 +85,19 @@ FeaturePoseEstimator::FeaturePoseEstimator(const std::vector<Segment>& map,
   dropped_ = build.dropped;
 }
 
+PoseEstimate ToPoseEstimate(const FeaturePoseResult& r) {
+  PoseEstimate e;
+  e.pose = r.pose;
+  e.covariance = r.covariance;
+  e.residual = r.residual;
+  e.num_points = r.num_points;
+  e.num_inliers = r.used;
+  e.iterations = r.iterations;
+  e.converged = r.converged;
+  e.status = r.reason;
+  return e;
+}
+
 FeaturePoseResult FeaturePoseEstimator::Estimate(const LadarScan& scan,
                                                  const Pose2& initial_map_T_vehicle) const {
   FeaturePoseResult result;
@@ -89,24 +109,24 @@ FeaturePoseResult FeaturePoseEstimator::Estimate(const LadarScan& scan,
   }
   const Pose2 initial_sensor = initial_map_T_vehicle * scan.sensor_offset;
 
-  auto t0 = std::chrono::steady_clock::now();
+  StageTimer t0(options_.stage_clock);
   PredictionOptions prediction = options_.prediction;
   prediction.max_range = std::min(prediction.max_range, scan.max_range);
   const PredictedFeatures predicted =
       PredictFeatures(map_, initial_sensor.translation(), prediction);
-  result.timings.prediction = SecondsSince(t0);
+  result.timings.prediction = t0.Seconds();
   std::vector<Segment> predicted_segments;
   for (int i : predicted.visible_segments) predicted_segments.push_back(map_.segments[static_cast<size_t>(i)]);
 
-  t0 = std::chrono::steady_clock::now();
+  t0.Restart();
   const ExtractedFeatures sensed = ExtractFeatures(scan, options_.extraction);
-  result.timings.extraction = SecondsSince(t0);
+  result.timings.extraction = t0.Seconds();
   result.num_points = sensed.num_points;
   for (const Feature& f : sensed.features) {
     (f.type == FeatureType::kCorner ? result.sensed_corners : result.sensed_lines)++;
   }
 
-  t0 = std::chrono::steady_clock::now();
+  t0.Restart();
   // Model corners the corner operator cannot find (angles far outside its interval) only
   // cost matching time; occlusion corners are kept whatever their angle.
   const auto& corner = options_.extraction.corner;
@@ -134,7 +154,7 @@ FeaturePoseResult FeaturePoseEstimator::Estimate(const LadarScan& scan,
     (model[i].type == FeatureType::kCorner ? result.predicted_corners : result.predicted_lines)++;
   }
   const MatchResult match = MatchFeatures(sensed.features, model_sorted_in_sensor, options_.matching);
-  result.timings.matching = SecondsSince(t0);
+  result.timings.matching = t0.Seconds();
   result.candidate_pairs = match.candidate_pairs;
   result.matches = static_cast<int>(match.pairs.size());
   result.search_complete = match.search_complete;
@@ -152,13 +172,13 @@ FeaturePoseResult FeaturePoseEstimator::Estimate(const LadarScan& scan,
     return result;
   }
 
-  t0 = std::chrono::steady_clock::now();
+  t0.Restart();
   std::vector<Correspondence> pairs;
   for (const FeaturePair& p : match.pairs) {
     pairs.push_back({sensed.features[static_cast<size_t>(p.sensed)], model_sorted[static_cast<size_t>(p.model)]});
   }
   const MinimizationResult min = MinimizeFeatureError(pairs, initial_sensor, options_.minimization);
-  result.timings.minimization = SecondsSince(t0);
+  result.timings.minimization = t0.Seconds();
   result.iterations = min.iterations;
   result.used = min.used;
   result.residual = min.rms_distance;
@@ -188,11 +208,11 @@ FeaturePoseResult FeaturePoseEstimator::Estimate(const LadarScan& scan,
   // The points on the map must lie as close to it as the range noise allows: a pose a
   // decimetre off (features of rounded walls, a map a little wrong) shows up here.
   if (result.converged && options_.min_support > 0.0) {
-    t0 = std::chrono::steady_clock::now();
+    t0.Restart();
     const PointSupport support = MeasureSupport(scan, min.pose, predicted_segments, options_.support_distance);
     result.support = support.fraction;
     result.support_median_distance = support.median_distance;
-    result.timings.verification = SecondsSince(t0);
+    result.timings.verification = t0.Seconds();
     const double max_median = options_.max_median_distance_factor * options_.minimization.point_sigma;
     if (result.support < options_.min_support) {
       result.converged = false;

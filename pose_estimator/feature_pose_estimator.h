@@ -12,11 +12,13 @@
 // correspondences that pin down all three directions and stay within the matching
 // bounds of the initial estimate.
 #include <Eigen/Core>
+#include <functional>
 #include <string>
 #include <vector>
 
 #include "common/geometry.h"
 #include "common/pose2.h"
+#include "common/pose_estimate.h"
 #include "common/scan.h"
 #include "pose_estimator/feature_extraction.h"
 #include "pose_estimator/feature_map.h"
@@ -41,9 +43,12 @@ struct FeaturePoseEstimatorOptions {
   // The median distance of those points from the map must not exceed this many
   // minimization.point_sigma (a right pose gives ~0.7 sigma). 0 switches it off.
   double max_median_distance_factor = 2.0;  // 1
+  // s: a clock for the per-stage timings (benchmarks pass a steady clock). The library
+  // reads no clock itself; without one every timing is 0.
+  std::function<double()> stage_clock;
 };
 
-struct FeaturePoseTimings {  // s, wall time of each stage
+struct FeaturePoseTimings {  // s of stage_clock spent in each stage (0 without one)
   double prediction = 0.0;
   double extraction = 0.0;
   double matching = 0.0;
@@ -70,6 +75,10 @@ struct FeaturePoseResult {
   double support_median_distance = 0.0;  // m, their median distance from the map
   FeaturePoseTimings timings;
 };
+
+// The result as the fleet's one estimate type (common/pose_estimate.h); utime, scan_id,
+// source and compute_time are the caller's to fill in.
+PoseEstimate ToPoseEstimate(const FeaturePoseResult& r);
 
 class FeaturePoseEstimator {
  public:

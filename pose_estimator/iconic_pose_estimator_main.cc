@@ -15,30 +15,20 @@
 // scan's utime), or the odometry pose itself for the first scan. A scan waits until
 // odometry at or after its utime has arrived.
 
-#include <algorithm>
-#include <ctime>
-#include <deque>
 #include <memory>
 #include <optional>
 #include <string>
 
-#include "common/angle.h"
 #include "common/config.h"
 #include "common/file_io.h"
 #include "common/log.h"
-#include "common/pose_at_time.h"
 #include "common/node/bus.h"
 #include "common/node/contour_map_conversions.h"
 #include "common/node/conversions.h"
 #include "common/node/node_runtime.h"
-#include "common/node/scan_odometry_sync.h"
-#include "common/pose_estimate.h"
+#include "common/node/scan_estimation_node.h"
 #include "minenav/contour_map_t.hpp"
-#include "minenav/heartbeat_t.hpp"
-#include "minenav/ladar_scan_t.hpp"
 #include "minenav/line_map_t.hpp"
-#include "minenav/odometry_t.hpp"
-#include "minenav/pose_estimate_t.hpp"
 #include "pose_estimator/iconic_estimator.h"
 
 namespace minenav {
@@ -46,31 +36,26 @@ namespace {
 
 struct ProcessOptions {
   std::string map;
-  std::string poses_out;
   std::string mode = "surveyed";
-  std::string initial = "auto";
   std::string method = "lookup";
   std::string loss = "none";
-  double max_odometry_gap = 1.0;  // s
-  std::string scan_channel = "LADAR_SCAN";
-  std::string odometry_channel = "ODOMETRY";
   std::string map_channel = "LINE_MAP";
   std::string contour_channel = "CONTOUR_MAP";
-  std::string pose_channel = "POSE_IPE";
+  ScanEstimationOptions estimation = [] {
+    ScanEstimationOptions o;
+    o.initial = "auto";
+    o.pose_channel = "POSE_IPE";
+    return o;
+  }();
 };
 
 void Declare(ConfigSchema& s, ProcessOptions& p, IconicEstimatorOptions& e) {
   s.AddString("map", &p.map, "surveyed line map JSON ({\"segments\": ...}); empty = from LINE_MAP or CONTOUR_MAP");
-  s.AddString("poses_out", &p.poses_out, "batch: write one pose per scan to this CSV (utime,x,y,theta)");
   s.AddString("mode", &p.mode,
               "surveyed (3.1, needs a map), scan-map (3.2), first-scan (3.3), all-previous (3.4), "
               "simultaneous (3.5, batch only)",
               {"surveyed", "scan-map", "first-scan", "all-previous", "simultaneous"});
-  s.AddString("initial", &p.initial,
-              "initial estimate: auto (batch: odometry with the scan's utime, else chained), odometry, chained",
-              {"auto", "odometry", "chained"});
-  s.AddDouble("max_odometry_gap", &p.max_odometry_gap, "s",
-              "farthest odometry reading from a scan's utime that may serve for it", 0.0, 3600.0);
+  DeclareScanEstimationOptions(s, &p.estimation, {"auto", "odometry", "chained"}, "ipe");
   s.AddString("method", &p.method, "correspondence: brute (Cox), grid (Gonzalez), lookup (thesis 3.1.1)",
               {"brute", "grid", "lookup"});
   IconicMatchOptions& m = e.match;
@@ -91,11 +76,8 @@ void Declare(ConfigSchema& s, ProcessOptions& p, IconicEstimatorOptions& e) {
   s.AddInt("point_stride", &e.point_stride, "simultaneous: use every k-th point", 1, 1000);
   s.AddBool("every_overlapping_scan", &e.every_overlapping_scan,
             "simultaneous: a residual per overlapping scan (A.3) rather than for the nearest only");
-  s.AddChannel("scan_channel", &p.scan_channel, "subscribes", "ladar_scan_t", "scans");
-  s.AddChannel("odometry_channel", &p.odometry_channel, "subscribes", "odometry_t", "initial estimates");
   s.AddChannel("map_channel", &p.map_channel, "subscribes", "line_map_t", "surveyed map when --map is empty");
   s.AddChannel("contour_channel", &p.contour_channel, "subscribes", "contour_map_t", "contour map as a line map when --map is empty");
-  s.AddChannel("pose_channel", &p.pose_channel, "publishes", "pose_estimate_t", "one estimate per scan (source ipe)");
   s.AddHelpEpilog(
       "Examples:\n"
       "  iconic_pose_estimator --log survey.lcm --map mine.json --mode surveyed --poses-out est.csv\n"
@@ -115,12 +97,6 @@ std::vector<Segment> ContourMapSegments(const contour_map_t& m) {
   return out;
 }
 
-double ThreadCpuSeconds() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
-
 int Main(int argc, char** argv) {
   ConfigSchema schema("iconic_pose_estimator",
                       "Iconic pose estimator (thesis ch. 3): scans + odometry [+ map] -> POSE_IPE.");
@@ -134,7 +110,6 @@ int Main(int argc, char** argv) {
   ParseRobustLoss(p.loss, &eo.match.loss);
   if (const std::string why = ValidateIconicMatchOptions(eo.match); !why.empty()) throw UsageError(why);
   const bool batch = !runtime.options().log.empty();
-  if (!p.poses_out.empty() && !batch) throw UsageError("--poses-out needs --log (batch mode)");
   if (eo.mode == IconicMode::kSimultaneous && !batch)
     throw UsageError("--mode simultaneous needs the whole sequence: use it with --log");
   if (eo.mode != IconicMode::kSurveyed && !p.map.empty())
@@ -148,7 +123,6 @@ int Main(int argc, char** argv) {
   }
   runtime.Start();
   Bus& bus = runtime.bus();
-  const int64_t max_gap_us = std::llround(p.max_odometry_gap * 1e6);
 
   int64_t line_version = -1, contour_version = -1;  // outlive the handlers below
   if (eo.mode == IconicMode::kSurveyed && p.map.empty()) {
@@ -170,94 +144,20 @@ int Main(int argc, char** argv) {
     });
   }
 
-  ScanOdometrySync sync({.max_odometry_gap_us = max_gap_us});
-  std::vector<StampedPose> poses;
-  std::optional<std::pair<Pose2, Pose2>> last;  // (estimate, odometry) of the last converged scan
-  std::vector<LadarScan> all_scans;             // simultaneous mode
-  std::vector<Pose2> all_initial;
-  int64_t scans = 0, converged = 0, skipped = 0;
-
-  auto publish = [&](const IconicMatchResult& r, const LadarScan& scan, double seconds) {
-    PoseEstimate e = ToPoseEstimate(r, scan);
-    e.compute_time = seconds;
-    Publish(bus, p.pose_channel, ToLcm(e));
-  };
-
-  auto process = [&](const SyncedScan& synced) {
-    const LadarScan& scan = synced.scan;
-    const std::optional<Pose2>& odo = synced.odometry;
-    if (!odo) {
-      ++skipped;
-      MINENAV_LOG(kWarn) << "scan " << scan.scan_id << " at " << scan.utime << ": no odometry within "
-                         << p.max_odometry_gap << " s; skipped";
-      runtime.SetStatus(heartbeat_t::WARN, "no odometry for a scan");
-      return;
-    }
-    const bool exact = synced.exact;
-    Pose2 initial = *odo;
-    if (last && (p.initial == "chained" || (p.initial == "auto" && !(exact && batch))))
-      initial = last->first * Between(last->second, *odo);
-    if (eo.mode == IconicMode::kSimultaneous) {
-      all_scans.push_back(scan);
-      all_initial.push_back(initial);
-      last = std::make_pair(initial, *odo);
-      return;
-    }
-    const double t0 = ThreadCpuSeconds();
-    const IconicMatchResult r = estimator->AddScan(scan, initial);
-    const double seconds = ThreadCpuSeconds() - t0;
-    ++scans;
-    publish(r, scan, seconds);
-    if (r.converged) {
-      ++converged;
-      last = std::make_pair(r.pose, *odo);
-      runtime.SetStatus(heartbeat_t::OK, "");
-    } else {
-      MINENAV_LOG(kDebug) << "scan " << scan.scan_id << ": " << r.status;
-      runtime.SetStatus(heartbeat_t::WARN, "last scan: " + r.status);
-    }
-    poses.push_back({scan.utime, r.converged ? r.pose : initial});
-  };
-  auto drain = [&](bool at_shutdown) {
-    for (const SyncedScan& s : sync.TakeReady(at_shutdown)) process(s);
-  };
-
-  Subscribe<odometry_t>(bus, p.odometry_channel, [&](const odometry_t& m) {
-    if (!sync.AddOdometry(FromLcm(m))) MINENAV_LOG(kWarn) << "ODOMETRY time went back: history cleared";
-    drain(false);
-  });
-  Subscribe<ladar_scan_t>(bus, p.scan_channel, [&](const ladar_scan_t& m) {
-    LadarScan scan = FromLcm(m);
-    if (const std::string why = ValidateScan(scan); !why.empty()) throw InputError("invalid scan: " + why);
-    if (!sync.AddScan(std::move(scan))) {
-      MINENAV_LOG(kWarn) << "100 scans waiting for odometry: dropping the oldest";
-      ++skipped;
-    }
-    drain(false);
-  });
-  runtime.OnShutdown([&] {
-    drain(true);
-    if (eo.mode == IconicMode::kSimultaneous && !all_scans.empty()) {
-      const double t0 = ThreadCpuSeconds();
-      const std::vector<IconicMatchResult> results = EstimateSequence(all_scans, all_initial, {}, eo);
-      const double seconds = (ThreadCpuSeconds() - t0) / static_cast<double>(all_scans.size());
-      for (size_t k = 0; k < results.size(); ++k) {
-        ++scans;
-        converged += results[k].converged;
-        publish(results[k], all_scans[k], seconds);
-        poses.push_back({all_scans[k].utime, results[k].converged ? results[k].pose : all_initial[k]});
-      }
-      if (!results.empty() && !results.back().converged)
-        MINENAV_LOG(kWarn) << "simultaneous estimate: " << results.back().status;
-    }
-    if (!p.poses_out.empty()) {
-      SavePosesCsv(p.poses_out, poses);
-      MINENAV_LOG(kInfo) << "wrote " << poses.size() << " poses to " << p.poses_out;
-    }
-    MINENAV_LOG(kInfo) << scans << " scans estimated (" << p.mode << "), " << converged << " converged, " << skipped
-                       << " skipped";
-  });
-  return runtime.Run();
+  ScanEstimationNode node(runtime, p.estimation, "ipe",
+                          [&](const LadarScan& scan, const Pose2& initial, std::string*) -> std::optional<PoseEstimate> {
+                            return ToPoseEstimate(estimator->AddScan(scan, initial), scan);
+                          });
+  node.set_label(p.mode);
+  if (eo.mode == IconicMode::kSimultaneous) {
+    node.EstimateAllAtEnd([&](const std::vector<LadarScan>& scans, const std::vector<Pose2>& initial) {
+      std::vector<PoseEstimate> out;
+      for (const IconicMatchResult& r : EstimateSequence(scans, initial, {}, eo))
+        out.push_back(ToPoseEstimate(r, scans[out.size()]));
+      return out;
+    });
+  }
+  return node.Run();
 }
 
 }  // namespace
