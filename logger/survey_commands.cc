@@ -16,6 +16,7 @@
 #include "logger/survey.h"
 #include "sim/changing_world.h"
 #include "sim/mine_generator.h"
+#include "sim/scenario.h"
 #include "sim/mockup_generator.h"
 
 namespace minenav {
@@ -297,7 +298,7 @@ int RunGenerateCommand(const std::vector<std::string>& args) {
       "  loop      the mine, with stations around one pillar closing a loop (24)\n"
       "A changing world (thesis 4.8, sim/changing_world.h): several worlds, one file each (--world-out\n"
       "with '{}' standing for the world index), and stations with a 'world' column:";
-  std::vector<std::string> kinds = {"mine", "research", "mockup", "loop"};
+  std::vector<std::string> kinds = ScenarioKinds();
   for (const ChangingWorldScenario& sc : AllChangingWorldScenarios()) {
     summary += "\n  " + sc.name + std::string(sc.name.size() < 17 ? 17 - sc.name.size() : 1, ' ') + sc.description;
     kinds.push_back(sc.name);
@@ -328,28 +329,24 @@ int RunGenerateCommand(const std::vector<std::string>& args) {
   RequireOutputPath(world_out, "--world-out");
   RequireOutputPath(stations_out, "--stations-out");
   if (!map_out.empty() && kind != "mockup") throw UsageError("--map-out is only for --kind mockup");
-  mine.seed = static_cast<uint64_t>(seed);
-  research.seed = static_cast<uint64_t>(seed);
-  if (std::find(kinds.begin(), kinds.begin() + 4, kind) == kinds.begin() + 4)
+  const auto built_in_end = kinds.begin() + static_cast<std::ptrdiff_t>(ScenarioKinds().size());
+  if (std::find(kinds.begin(), built_in_end, kind) == built_in_end)
     return WriteChangingWorld(ChangingWorldScenarioByName(kind), world_out, stations_out, map_out);
 
-  std::vector<Segment> world, map;
-  std::vector<Station> st;
-  if (kind == "mine") {
-    world = GenerateRoomAndPillarMine(mine);
-    st = MineSurveyStations(mine, stations > 0 ? stations : 42, heading_variation);
-  } else if (kind == "loop") {
-    world = GenerateRoomAndPillarMine(mine);
-    st = LoopStations(mine, stations > 0 ? stations : 24, loop_row, loop_col, heading_variation);
-  } else if (kind == "research") {
-    world = GenerateResearchMine(research);
-    st = ResearchMineStations(research, stations > 0 ? stations : 33, heading_variation);
-  } else {
-    const MockupWorld mockup = GenerateIndoorMockup(static_cast<uint64_t>(seed));
-    world = mockup.World();
-    map = mockup.map;
-    st = mockup.stations;
-  }
+  ScenarioOptions g;
+  g.kind = kind;
+  g.seed = static_cast<uint64_t>(seed);
+  g.mine = mine;
+  g.research = research;
+  g.stations = stations;
+  g.heading_variation = heading_variation;
+  g.loop_row = loop_row;
+  g.loop_col = loop_col;
+  if (const std::string why = ValidateScenarioOptions(g); !why.empty()) throw UsageError(why);
+  const GeneratedScenario generated = GenerateScenario(g);
+  const std::vector<Segment>& world = generated.world;
+  const std::vector<Station>& st = generated.stations;
+  const std::vector<Segment> map = kind == "mockup" ? generated.map : std::vector<Segment>{};
   SaveSegmentsJson(world_out, world);
   SaveStationsCsv(stations_out, st);
   if (!map_out.empty()) SaveSegmentsJson(map_out, map);

@@ -38,6 +38,7 @@
 #include "sim/mockup_generator.h"
 #include "sim/odometry_model.h"
 #include "sim/skid_steer.h"
+#include "sim/scenario.h"
 #include "sim/world.h"
 
 namespace minenav {
@@ -213,36 +214,20 @@ Scenario BuildScenario(const VehicleSimOptions& o, const std::vector<std::string
       if (sc.later_worlds.back().empty()) throw InputError(world_files[k] + ": the world has no segments");
       sc.later_names.push_back(world_files[k]);
     }
-  } else if (o.generate == "mine") {
-    MineOptions m;
-    m.pillar_rows = o.pillar_rows;
-    m.pillar_cols = o.pillar_cols;
-    m.pillar_size = o.pillar_size;
-    m.room_width = o.room_width;
-    m.seed = static_cast<uint64_t>(o.seed);
-    const std::string why = ValidateMineOptions(m);
-    if (!why.empty()) throw UsageError(why);
-    sc.world = GenerateRoomAndPillarMine(m);
-    sc.map = sc.world;
-    first_station = MineSurveyStations(m).front().pose;
-    sc.name = "mine seed " + std::to_string(o.seed);
-  } else if (o.generate == "research") {
-    ResearchMineOptions m;
-    m.pillar_rows = o.pillar_rows;
-    m.pillar_cols = o.pillar_cols;
-    m.seed = static_cast<uint64_t>(o.seed);
-    const std::string why = ValidateResearchMineOptions(m);
-    if (!why.empty()) throw UsageError(why);
-    sc.world = GenerateResearchMine(m);
-    sc.map = sc.world;
-    first_station = ResearchMineStations(m).front().pose;
-    sc.name = "research mine seed " + std::to_string(o.seed);
   } else {
-    const MockupWorld m = GenerateIndoorMockup(static_cast<uint64_t>(o.seed));
-    sc.world = m.World();
-    sc.map = m.map;
-    first_station = m.stations.front().pose;
-    sc.name = "indoor mockup seed " + std::to_string(o.seed);
+    ScenarioOptions g;
+    g.kind = o.generate;
+    g.seed = static_cast<uint64_t>(o.seed);
+    g.mine.pillar_rows = g.research.pillar_rows = o.pillar_rows;
+    g.mine.pillar_cols = g.research.pillar_cols = o.pillar_cols;
+    g.mine.pillar_size = o.pillar_size;
+    g.mine.room_width = o.room_width;
+    if (const std::string why = ValidateScenarioOptions(g); !why.empty()) throw UsageError(why);
+    GeneratedScenario generated = GenerateScenario(g);
+    sc.world = std::move(generated.world);
+    sc.map = std::move(generated.map);
+    first_station = generated.stations.front().pose;
+    sc.name = generated.name;
   }
   if (o.start_pose == "auto") {
     sc.start = first_station.value_or(Pose2());
