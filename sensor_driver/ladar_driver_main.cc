@@ -16,7 +16,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <deque>
 #include <memory>
 #include <optional>
 #include <string>
@@ -35,6 +34,7 @@
 #include "minenav/vehicle_truth_t.hpp"
 #include "sensor_driver/ladar_model.h"
 #include "sensor_driver/ladar_simulator.h"
+#include "sensor_driver/scan_schedule.h"
 #include "sensor_driver/segment_grid.h"
 
 namespace minenav {
@@ -145,14 +145,6 @@ bool SameSegments(const std::vector<Segment>& a, const std::vector<Segment>& b) 
   return true;
 }
 
-// The vehicle's true pose at time t from the two samples around it (heading along the
-// shorter way round).
-Pose2 Interpolate(const TruthReading& a, const TruthReading& b, int64_t t) {
-  if (b.utime <= a.utime) return b.pose;
-  const double f = static_cast<double>(t - a.utime) / static_cast<double>(b.utime - a.utime);
-  return InterpolatePose(a.pose, b.pose, f);
-}
-
 int RunSimulation(NodeRuntime& runtime, const LadarDriverOptions& o, const LadarModel& model,
                   const Pose2& sensor_offset) {
   Bus& bus = runtime.bus();
@@ -178,49 +170,26 @@ int RunSimulation(NodeRuntime& runtime, const LadarDriverOptions& o, const Ladar
     });
   }
 
-  std::deque<TruthReading> truth;
-  std::optional<int64_t> next_scan;
+  ScanSchedule schedule({.period_us = period_us, .history_us = buffer_us, .max_gap_us = max_gap_us});
   int64_t scan_id = 0;
   int64_t skipped_no_world = 0;
   Subscribe<vehicle_truth_t>(bus, o.truth_channel, [&](const vehicle_truth_t& m) {
-    const TruthReading t = FromLcm(m);
-    if (!truth.empty() && t.utime <= truth.back().utime) {
-      if (t.utime == truth.back().utime) return;  // duplicate
-      // Time went backwards: the simulator restarted. Start a new schedule.
-      MINENAV_LOG(kWarn) << "SIM_TRUTH time went back by " << static_cast<double>(truth.back().utime - t.utime) * 1e-6
+    ScheduleNote note;
+    const std::vector<DueScan> due = schedule.AddTruth(FromLcm(m), &note);
+    if (note.restarted)
+      MINENAV_LOG(kWarn) << o.truth_channel << " time went back by " << 1e-6 * static_cast<double>(note.went_back_us)
                          << " s: restarting the scan schedule";
-      truth.clear();
-      next_scan.reset();
-    }
-    if (!truth.empty() && t.utime - truth.back().utime > max_gap_us && next_scan) {
-      // Never interpolate across a long gap: skip to the first scan time after it.
-      const int64_t missed = (t.utime - *next_scan) / period_us;
-      if (missed > 0) {
-        MINENAV_LOG(kWarn) << "SIM_TRUTH gap of " << static_cast<double>(t.utime - truth.back().utime) * 1e-6 << " s: " << missed
-                           << " scan times skipped";
-        *next_scan += missed * period_us;
-      }
-    }
-    truth.push_back(t);
-    while (truth.size() > 2 && truth.front().utime < t.utime - buffer_us) truth.pop_front();
-    if (!next_scan) next_scan = t.utime;
-    while (*next_scan <= t.utime) {
-      const int64_t scan_utime = *next_scan;
-      *next_scan += period_us;
-      // Samples a, b with a.utime <= scan_utime <= b.utime (b is the newest if only one).
-      auto after = std::lower_bound(truth.begin(), truth.end(), scan_utime,
-                                    [](const TruthReading& r, int64_t u) { return r.utime < u; });
-      if (after == truth.end()) break;  // cannot happen: scan_utime <= newest
-      const TruthReading& b = *after;
-      const TruthReading& a = after == truth.begin() ? b : *(after - 1);
+    if (note.skipped_scans > 0)
+      MINENAV_LOG(kWarn) << o.truth_channel << " gap of " << 1e-6 * static_cast<double>(note.gap_us) << " s: "
+                         << note.skipped_scans << " scan times skipped";
+    for (const DueScan& d : due) {
       if (grid == nullptr) {
         if (skipped_no_world++ % 50 == 0)
           MINENAV_LOG(kWarn) << "no world yet (waiting for " << o.world_channel << "): scan skipped";
         runtime.SetStatus(heartbeat_t::WARN, "no world");
         continue;
       }
-      const Pose2 pose = Interpolate(a, b, scan_utime);
-      const LadarScan scan = simulator.Simulate(*grid, pose, sensor_offset, scan_utime, scan_id++);
+      const LadarScan scan = simulator.Simulate(*grid, d.pose, sensor_offset, d.utime, scan_id++);
       Publish(bus, o.scan_channel, ToLcm(scan));
       runtime.SetStatus(heartbeat_t::OK, "");
     }
