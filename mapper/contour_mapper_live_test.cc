@@ -31,6 +31,8 @@
 #include "minenav/heartbeat_t.hpp"
 #include "minenav/pose_estimate_t.hpp"
 #include "tests/child_process.h"
+#include "tests/temp_dir.h"
+#include "tests/bus/private_bus_test.h"
 
 namespace minenav {
 namespace {
@@ -41,16 +43,6 @@ using testing::ChildProcess;
 using testing::ReadTextFile;
 
 constexpr int kStations = 8;
-
-struct TempDir {
-  fs::path path = fs::temp_directory_path() / ("minenav_contour_mapper_live_" + std::to_string(::getpid()));
-  TempDir() { fs::create_directories(path); }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
-  std::string operator/(const std::string& name) const { return (path / name).string(); }
-};
 
 int RunChild(const std::vector<std::string>& argv, const std::string& output) {
   ChildProcess p(argv, output);
@@ -85,17 +77,8 @@ class Listener {
   LcmBus bus_;
 };
 
-class ContourMapperLiveTest : public ::testing::Test {
+class ContourMapperLiveTest : public testing::PrivateBusTest {
  protected:
-  void SetUp() override {
-    const char* in_private_net = std::getenv("MINENAV_IN_PRIVATE_NET");
-    ASSERT_TRUE(in_private_net != nullptr && std::string(in_private_net) == "1")
-        << "bus tests must run inside tests/bus/private_net.sh (a private network namespace)";
-    const char* url = std::getenv("LCM_DEFAULT_URL");
-    ASSERT_TRUE(url != nullptr && url[0] != '\0') << "private_net.sh --port N sets LCM_DEFAULT_URL";
-    url_ = url;
-  }
-
   // A survey log of the first kStations stations of the synthetic mine.
   void MakeSurvey() {
     ASSERT_EQ(RunChild({MINENAV_LOG_TOOL_BIN, "generate", "--kind", "mine", "--seed", "2", "--world-out", dir_ / "mine.json",
@@ -186,8 +169,7 @@ class ContourMapperLiveTest : public ::testing::Test {
     }
   }
 
-  TempDir dir_;
-  std::string url_;
+  testing::TempDir dir_{"minenav_contour_mapper_live"};
 };
 
 TEST_F(ContourMapperLiveTest, ReplayThroughTheLiveProcessGivesTheBatchMap) {

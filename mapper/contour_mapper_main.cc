@@ -56,6 +56,7 @@
 #include "common/node/bus.h"
 #include "common/node/contour_map_conversions.h"
 #include "common/node/conversions.h"
+#include "common/node/cpu_time.h"
 #include "common/node/node_runtime.h"
 #include "common/node/scan_odometry_sync.h"
 #include "logger/svg_render.h"
@@ -158,12 +159,6 @@ void Declare(ConfigSchema& s, ProcessOptions& p, mapper::MappingSessionOptions& 
       "Exit codes: 0 ok, 2 bad flag or input file (or an output naming an input), 3 runtime failure,\n"
       "130 batch run stopped by SIGINT/SIGTERM (what was done is in MAP.partial, POSES.partial, SVG.partial).\n"
       "A second SIGINT/SIGTERM ends the process at once (the checkpoint is saved before the final refinement).\n");
-}
-
-double ThreadCpuSeconds() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
 struct Publication {

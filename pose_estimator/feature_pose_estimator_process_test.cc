@@ -13,6 +13,7 @@
 #include "minenav/odometry_t.hpp"
 #include "pose_estimator/feature_test_util.h"
 #include "tests/child_process.h"
+#include "tests/temp_dir.h"
 
 namespace minenav {
 namespace {
@@ -21,22 +22,12 @@ namespace fs = std::filesystem;
 using minenav::testing::ChildProcess;
 using minenav::testing::ReadTextFile;
 
-struct TempDir {
-  fs::path path = fs::temp_directory_path() / ("minenav_fpe_process_test_" + std::to_string(::getpid()));
-  TempDir() { fs::create_directories(path); }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
-  std::string operator/(const std::string& name) const { return (path / name).string(); }
-};
-
 struct RunResult {
   int exit_code = -1;
   std::string output;
 };
 
-RunResult Fpe(const std::vector<std::string>& args, const TempDir& dir) {
+RunResult Fpe(const std::vector<std::string>& args, const testing::TempDir& dir) {
   std::vector<std::string> argv = {MINENAV_FPE_BIN};
   argv.insert(argv.end(), args.begin(), args.end());
   ChildProcess p(argv, dir / "out.txt");
@@ -45,7 +36,7 @@ RunResult Fpe(const std::vector<std::string>& args, const TempDir& dir) {
 }
 
 TEST(FeaturePoseEstimatorProcess, BatchOverALogWritesOnePosePerScan) {
-  TempDir dir;
+  testing::TempDir dir("minenav_fpe_process_test");
   const auto map = minenav::testing::RoomWithPillar();
   auto world = map;
   minenav::testing::AddBox(&world, 2, 1, 3, 1.8);  // clutter
@@ -100,7 +91,7 @@ TEST(FeaturePoseEstimatorProcess, BatchOverALogWritesOnePosePerScan) {
 }
 
 TEST(FeaturePoseEstimatorProcess, BadFlagsAndFilesExitTwoWithOneLine) {
-  TempDir dir;
+  testing::TempDir dir("minenav_fpe_process_test");
   RunResult r = Fpe({"--map", dir / "missing.json", "--log", dir / "missing.lcm"}, dir);
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("missing.json"), std::string::npos) << r.output;

@@ -21,6 +21,8 @@
 #include "minenav/pose_estimate_t.hpp"
 #include "minenav/vehicle_truth_t.hpp"
 #include "tests/child_process.h"
+#include "tests/temp_dir.h"
+#include "tests/bus/private_bus_test.h"
 
 namespace minenav {
 namespace {
@@ -30,24 +32,12 @@ using Clock = std::chrono::steady_clock;
 using testing::ChildProcess;
 using testing::ReadTextFile;
 
-struct TempDir {
-  fs::path path = fs::temp_directory_path() / ("minenav_ipe_bus_test_" + std::to_string(::getpid()));
-  TempDir() { fs::create_directories(path); }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
-  std::string operator/(const std::string& name) const { return (path / name).string(); }
-};
+using IconicBusTest = testing::PrivateBusTest;
 
-TEST(IconicBusTest, PoseIpeTracksSimTruth) {
-  const char* in_private_net = std::getenv("MINENAV_IN_PRIVATE_NET");
-  ASSERT_TRUE(in_private_net != nullptr && std::string(in_private_net) == "1")
-      << "bus tests must run inside tests/bus/private_net.sh (a private network namespace)";
-  const char* url = std::getenv("LCM_DEFAULT_URL");
-  ASSERT_TRUE(url != nullptr && url[0] != '\0') << "private_net.sh --port N sets LCM_DEFAULT_URL";
+TEST_F(IconicBusTest, PoseIpeTracksSimTruth) {
+  const char* url = url_.c_str();
 
-  TempDir dir;
+  testing::TempDir dir("minenav_ipe_bus_test");
   LcmBus bus(url, 1000);
   std::map<int64_t, Pose2> truth;  // utime -> true pose
   std::vector<pose_estimate_t> estimates;

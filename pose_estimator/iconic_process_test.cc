@@ -17,6 +17,7 @@
 #include "pose_estimator/iconic_test_world.h"
 #include "tests/child_process.h"
 #include "tests/log_contents.h"
+#include "tests/temp_dir.h"
 
 namespace minenav {
 namespace {
@@ -25,22 +26,12 @@ namespace fs = std::filesystem;
 using minenav::testing::ChildProcess;
 using minenav::testing::ReadTextFile;
 
-struct TempDir {
-  fs::path path = fs::temp_directory_path() / ("minenav_ipe_process_test_" + std::to_string(::getpid()));
-  TempDir() { fs::create_directories(path); }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
-  std::string operator/(const std::string& name) const { return (path / name).string(); }
-};
-
 struct RunResult {
   int exit_code = -1;
   std::string output;
 };
 
-RunResult Ipe(const std::vector<std::string>& args, const TempDir& dir) {
+RunResult Ipe(const std::vector<std::string>& args, const testing::TempDir& dir) {
   std::vector<std::string> argv = {MINENAV_IPE_BIN};
   argv.insert(argv.end(), args.begin(), args.end());
   ChildProcess p(argv, dir / "out.txt");
@@ -93,7 +84,7 @@ void ExpectPosesNearTruth(const std::string& csv, const std::vector<StampedPose>
 }
 
 TEST(IconicProcessTest, EveryModeWritesOnePosePerScan) {
-  TempDir dir;
+  testing::TempDir dir("minenav_ipe_process_test");
   const auto truth = WriteSurveyLog(dir / "in.lcm", false);
   SaveSegmentsJson(dir / "map.json", testing::RoomWorld());
   for (const std::string mode : {"surveyed", "scan-map", "first-scan", "all-previous", "simultaneous"}) {
@@ -119,7 +110,7 @@ TEST(IconicProcessTest, EveryModeWritesOnePosePerScan) {
 }
 
 TEST(IconicProcessTest, MapFromTheLineMapChannel) {
-  TempDir dir;
+  testing::TempDir dir("minenav_ipe_process_test");
   const auto truth = WriteSurveyLog(dir / "in.lcm", true);
   const RunResult r = Ipe({"--log", dir / "in.lcm", "--poses-out", dir / "est.csv", "--min-threshold", "0.05"}, dir);
   ASSERT_EQ(r.exit_code, 0) << r.output;
@@ -127,7 +118,7 @@ TEST(IconicProcessTest, MapFromTheLineMapChannel) {
 }
 
 TEST(IconicProcessTest, BadFlagsAndFilesExitWithTwoAndOneLine) {
-  TempDir dir;
+  testing::TempDir dir("minenav_ipe_process_test");
   WriteSurveyLog(dir / "in.lcm", false);
   RunResult r = Ipe({"--log", dir / "in.lcm", "--mode", "icp"}, dir);
   EXPECT_EQ(r.exit_code, 2) << r.output;
@@ -148,7 +139,7 @@ TEST(IconicProcessTest, BadFlagsAndFilesExitWithTwoAndOneLine) {
 }
 
 TEST(IconicProcessTest, ScansThatMatchNothingAreReportedNotFatal) {
-  TempDir dir;
+  testing::TempDir dir("minenav_ipe_process_test");
   WriteSurveyLog(dir / "in.lcm", false);
   // A map 100 m away from where the scans were taken.
   SaveSegmentsJson(dir / "far.json", {{100, 100, 110, 100}, {110, 100, 110, 110}, {110, 110, 100, 110}});

@@ -28,6 +28,7 @@
 #include "tests/changing_world_fixtures.h"
 #include "tests/child_process.h"
 #include "tests/log_contents.h"
+#include "tests/temp_dir.h"
 
 namespace minenav {
 namespace {
@@ -36,16 +37,6 @@ namespace fs = std::filesystem;
 using testing::ChildProcess;
 using testing::ReadChannel;
 using testing::ReadTextFile;
-
-struct TempDir {
-  fs::path path = fs::temp_directory_path() / ("minenav_changing_world_test_" + std::to_string(::getpid()));
-  TempDir() { fs::create_directories(path); }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
-  std::string operator/(const std::string& name) const { return (path / name).string(); }
-};
 
 struct Result {
   int code = -1;
@@ -63,7 +54,7 @@ const std::vector<std::string> kIdealLadar = {"--range-sigma", "0", "--range-res
                                               "--mixed-pixel-probability", "0", "--beam-divergence", "0"};
 
 TEST(ChangingWorldSurvey, EachStationIsCastInItsWorldAndTheLogRecordsEachActivation) {
-  TempDir dir;
+  testing::TempDir dir("minenav_changing_world_test");
   const std::string a = dir / "closed.json", b = dir / "open.json", stations = dir / "st.csv";
   SaveSegmentsJson(a, testing::DoorClosedRoom());
   SaveSegmentsJson(b, testing::DoorOpenRoomWithBox());
@@ -124,7 +115,7 @@ TEST(ChangingWorldSurvey, EachStationIsCastInItsWorldAndTheLogRecordsEachActivat
 }
 
 TEST(ChangingWorldSurvey, AWorldIndexOutOfRangeExitsTwoWithOneLineAndNoOutput) {
-  TempDir dir;
+  testing::TempDir dir("minenav_changing_world_test");
   const std::string a = dir / "closed.json", b = dir / "open.json", stations = dir / "st.csv";
   SaveSegmentsJson(a, testing::DoorClosedRoom());
   SaveSegmentsJson(b, testing::DoorOpenRoomWithBox());
@@ -147,7 +138,7 @@ TEST(ChangingWorldSurvey, AWorldIndexOutOfRangeExitsTwoWithOneLineAndNoOutput) {
 }
 
 TEST(ChangingWorldSurvey, GenerateWritesEveryScenarioReadyForTheSurvey) {
-  TempDir dir;
+  testing::TempDir dir("minenav_changing_world_test");
   for (const std::string& name : ChangingWorldScenarioNames()) {
     const ChangingWorldScenario sc = ChangingWorldScenarioByName(name);
     const std::string pattern = dir / (name + "_{}.json"), stations = dir / (name + ".csv");
@@ -212,7 +203,7 @@ std::string WriteStopLog(const std::string& path, double seconds) {
 }
 
 TEST(ChangingWorldProcesses, VehicleSimChangesTheWorldOnTimeAndTheLadarCastsTheNewOne) {
-  TempDir dir;
+  testing::TempDir dir("minenav_changing_world_test");
   const std::string a = dir / "closed.json", b = dir / "open.json";
   SaveSegmentsJson(a, testing::DoorClosedRoom());
   SaveSegmentsJson(b, testing::DoorOpenRoomWithBox());
@@ -268,7 +259,7 @@ TEST(ChangingWorldProcesses, VehicleSimChangesTheWorldOnTimeAndTheLadarCastsTheN
 }
 
 TEST(ChangingWorldProcesses, VehicleSimRejectsBadChangeTimes) {
-  TempDir dir;
+  testing::TempDir dir("minenav_changing_world_test");
   const std::string a = dir / "closed.json", b = dir / "open.json";
   SaveSegmentsJson(a, testing::DoorClosedRoom());
   SaveSegmentsJson(b, testing::DoorOpenRoomWithBox());

@@ -19,6 +19,7 @@
 #include "minenav/vehicle_truth_t.hpp"
 #include "tests/child_process.h"
 #include "tests/log_contents.h"
+#include "tests/temp_dir.h"
 
 namespace minenav {
 namespace {
@@ -29,16 +30,6 @@ using testing::ReadChannel;
 using testing::ReadPayloads;
 
 constexpr int64_t kT0 = 1'700'000'000'000'000;
-
-struct TempDir {
-  fs::path path = fs::temp_directory_path() / ("minenav_sim_batch_test_" + std::to_string(::getpid()));
-  TempDir() { fs::create_directories(path); }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
-  std::string operator/(const std::string& name) const { return (path / name).string(); }
-};
 
 int RunToCompletion(const std::vector<std::string>& argv, const std::string& output) {
   ChildProcess p(argv, output);
@@ -77,7 +68,7 @@ std::string WriteTruthLog(const std::string& path) {
 }
 
 TEST(LadarDriverBatch, ScansOnScheduleWithInterpolatedPoses) {
-  TempDir dir;
+  testing::TempDir dir("minenav_sim_batch_test");
   const std::string in = WriteTruthLog(dir / "truth.lcm");
   const std::string out = dir / "scans.lcm";
   ASSERT_EQ(RunToCompletion({MINENAV_LADAR_DRIVER_BIN, "--log", in, "--log-out", out, "--range-sigma", "0",
@@ -104,7 +95,7 @@ TEST(LadarDriverBatch, ScansOnScheduleWithInterpolatedPoses) {
 }
 
 TEST(LadarDriverBatch, RepeatableForASeedAndDifferentForAnother) {
-  TempDir dir;
+  testing::TempDir dir("minenav_sim_batch_test");
   const std::string in = WriteTruthLog(dir / "truth.lcm");
   for (const char* name : {"a.lcm", "b.lcm"})
     ASSERT_EQ(RunToCompletion({MINENAV_LADAR_DRIVER_BIN, "--log", in, "--log-out", dir / name, "--seed", "9"},
@@ -123,7 +114,7 @@ TEST(LadarDriverBatch, RepeatableForASeedAndDifferentForAnother) {
 }
 
 TEST(LadarDriverBatch, BadFlagsExitWithUsageCode) {
-  TempDir dir;
+  testing::TempDir dir("minenav_sim_batch_test");
   EXPECT_EQ(RunToCompletion({MINENAV_LADAR_DRIVER_BIN, "--min-range", "far"}, dir / "o.txt"), 2);
   EXPECT_NE(testing::ReadTextFile(dir / "o.txt").find("--min-range"), std::string::npos);
   EXPECT_EQ(RunToCompletion({MINENAV_LADAR_DRIVER_BIN, "--min-range", "50", "--max-range", "10"}, dir / "o.txt"), 2);
@@ -164,7 +155,7 @@ std::vector<std::string> VehicleArgs(const std::string& in, const std::string& o
 }
 
 TEST(VehicleSimBatch, DrivesOnCommandsAndStopsWhenTheyGoStale) {
-  TempDir dir;
+  testing::TempDir dir("minenav_sim_batch_test");
   const std::string in = WriteCommandLog(dir / "commands.lcm");
   const std::string out = dir / "run.lcm";
   ASSERT_EQ(RunToCompletion(VehicleArgs(in, out), dir / "sim.txt"), 0) << testing::ReadTextFile(dir / "sim.txt");
@@ -206,7 +197,7 @@ TEST(VehicleSimBatch, DrivesOnCommandsAndStopsWhenTheyGoStale) {
 }
 
 TEST(VehicleSimBatch, RepeatableBitForBit) {
-  TempDir dir;
+  testing::TempDir dir("minenav_sim_batch_test");
   const std::string in = WriteCommandLog(dir / "commands.lcm");
   std::vector<std::string> a = VehicleArgs(in, dir / "a.lcm"), b = VehicleArgs(in, dir / "b.lcm");
   a.insert(a.end(), {"--odometry-translation-noise", "0.01"});
@@ -218,7 +209,7 @@ TEST(VehicleSimBatch, RepeatableBitForBit) {
 }
 
 TEST(VehicleSimBatch, WorldGeneratorsAndBadInput) {
-  TempDir dir;
+  testing::TempDir dir("minenav_sim_batch_test");
   const std::string in = WriteCommandLog(dir / "commands.lcm");
   for (const char* gen : {"mine", "research", "mockup"}) {
     const std::string world = dir / (std::string(gen) + ".json");

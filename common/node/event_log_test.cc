@@ -9,6 +9,7 @@
 
 #include "common/file_io.h"
 #include "minenav/odometry_t.hpp"
+#include "tests/temp_dir.h"
 
 namespace minenav {
 namespace {
@@ -16,18 +17,9 @@ namespace {
 namespace fs = std::filesystem;
 
 // A directory of this process's files, removed when the test binary exits.
-struct TempDir {
-  fs::path path = fs::temp_directory_path() / ("minenav_event_log_test_" + std::to_string(::getpid()));
-  TempDir() { fs::create_directories(path); }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
-};
-
 std::string TempPath(const std::string& name) {
-  static TempDir dir;
-  return (dir.path / name).string();
+  static testing::TempDir dir("minenav_event_log_test");
+  return (dir.path() / name).string();
 }
 
 odometry_t Odometry(int64_t utime, double x) {

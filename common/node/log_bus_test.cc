@@ -8,24 +8,15 @@
 #include "common/file_io.h"
 #include "minenav/odometry_t.hpp"
 #include "minenav/vehicle_truth_t.hpp"
+#include "tests/temp_dir.h"
 
 namespace minenav {
 namespace {
 
 namespace fs = std::filesystem;
 
-struct TempDir {
-  fs::path path = fs::temp_directory_path() / ("minenav_log_bus_test_" + std::to_string(::getpid()));
-  TempDir() { fs::create_directories(path); }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
-  std::string operator/(const std::string& name) const { return (path / name).string(); }
-};
-
 TEST(LogBus, DispatchesInFileOrderToMatchingSubscribersAndRecordsPublications) {
-  TempDir dir;
+  testing::TempDir dir("minenav_log_bus_test");
   const std::string in = dir / "in.lcm";
   {
     LogWriter w(in);
@@ -75,7 +66,7 @@ TEST(LogBus, DispatchesInFileOrderToMatchingSubscribersAndRecordsPublications) {
 }
 
 TEST(LogBus, HandlerExceptionsAreBadMessagesAndTheRunGoesOn) {
-  TempDir dir;
+  testing::TempDir dir("minenav_log_bus_test");
   const std::string in = dir / "in.lcm";
   {
     LogWriter w(in);

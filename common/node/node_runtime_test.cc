@@ -16,6 +16,7 @@
 #include "minenav/heartbeat_t.hpp"
 #include "minenav/odometry_t.hpp"
 #include "minenav/vehicle_truth_t.hpp"
+#include "tests/temp_dir.h"
 
 namespace minenav {
 namespace {
@@ -23,18 +24,9 @@ namespace {
 namespace fs = std::filesystem;
 
 // A directory of this process's files, removed when the test binary exits.
-struct TempDir {
-  fs::path path = fs::temp_directory_path() / ("minenav_runtime_test_" + std::to_string(::getpid()));
-  TempDir() { fs::create_directories(path); }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
-};
-
 std::string TempPath(const std::string& name) {
-  static TempDir dir;
-  return (dir.path / name).string();
+  static testing::TempDir dir("minenav_runtime_test");
+  return (dir.path() / name).string();
 }
 
 odometry_t Odometry(int64_t utime, double x) {

@@ -23,53 +23,21 @@
 #include "minenav/vehicle_truth_t.hpp"
 #include "tests/changing_world_fixtures.h"
 #include "tests/child_process.h"
+#include "tests/temp_dir.h"
+#include "tests/bus/private_bus_test.h"
 
 namespace minenav {
 namespace {
 
 namespace fs = std::filesystem;
-using Clock = std::chrono::steady_clock;
 using testing::ChildProcess;
 using testing::Logged;
 using testing::ReadTextFile;
 
-struct TempDir {
-  fs::path path = fs::temp_directory_path() / ("minenav_changing_world_bus_" + std::to_string(::getpid()));
-  TempDir() { fs::create_directories(path); }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
-  std::string operator/(const std::string& name) const { return (path / name).string(); }
-};
-
-class ChangingWorldBusTest : public ::testing::Test {
- protected:
-  void SetUp() override {
-    const char* in_private_net = std::getenv("MINENAV_IN_PRIVATE_NET");
-    ASSERT_TRUE(in_private_net != nullptr && std::string(in_private_net) == "1")
-        << "bus tests must run inside tests/bus/private_net.sh (a private network namespace); "
-           "register them in CTest as: private_net.sh --port 77NN -- <test binary>";
-    const char* url = std::getenv("LCM_DEFAULT_URL");
-    ASSERT_TRUE(url != nullptr && url[0] != '\0') << "private_net.sh --port N sets LCM_DEFAULT_URL; it is missing";
-    url_ = url;
-  }
-
-  // Handles messages for up to `seconds`, until `done` returns true.
-  static bool Pump(Bus& bus, double seconds, const std::function<bool()>& done) {
-    const auto end = Clock::now() + std::chrono::duration<double>(seconds);
-    while (Clock::now() < end) {
-      if (done()) return true;
-      bus.HandleFor(10'000);
-    }
-    return done();
-  }
-
-  std::string url_;
-};
+using ChangingWorldBusTest = testing::PrivateBusTest;
 
 TEST_F(ChangingWorldBusTest, TheLadarCastsTheNewWorldFromTheMomentVehicleSimChangesIt) {
-  TempDir dir;
+  testing::TempDir dir("minenav_changing_world_bus");
   const std::string a = dir / "closed.json", b = dir / "open.json";
   SaveSegmentsJson(a, testing::DoorClosedRoom());
   SaveSegmentsJson(b, testing::DoorOpenRoomWithBox());

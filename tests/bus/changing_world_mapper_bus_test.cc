@@ -31,33 +31,15 @@
 #include "minenav/pose_estimate_t.hpp"
 #include "sim/changing_world.h"
 #include "tests/child_process.h"
+#include "tests/temp_dir.h"
+#include "tests/bus/private_bus_test.h"
 
 namespace minenav {
 namespace {
 
 namespace fs = std::filesystem;
-using Clock = std::chrono::steady_clock;
 using testing::ChildProcess;
 using testing::ReadTextFile;
-
-struct TempDir {
-  fs::path path = fs::temp_directory_path() / ("minenav_changing_world_mapper_" + std::to_string(::getpid()));
-  TempDir() { fs::create_directories(path); }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
-  std::string operator/(const std::string& name) const { return (path / name).string(); }
-};
-
-bool Pump(Bus& bus, double seconds, const std::function<bool()>& done) {
-  const auto end = Clock::now() + std::chrono::duration<double>(seconds);
-  while (Clock::now() < end) {
-    if (done()) return true;
-    bus.HandleFor(10'000);
-  }
-  return done();
-}
 
 mapper::ContourMap ToContourMap(const contour_map_t& m) {
   mapper::ContourMap map;
@@ -107,15 +89,12 @@ ScenarioCheck CheckFor(const std::vector<Segment>& before, const std::vector<Seg
   return c;
 }
 
-TEST(ChangingWorldMapperBusTest, TheLiveMapperFollowsDoorsOpenedWhileTheFleetRuns) {
-  const char* in_private_net = std::getenv("MINENAV_IN_PRIVATE_NET");
-  ASSERT_TRUE(in_private_net != nullptr && std::string(in_private_net) == "1")
-      << "bus tests must run inside tests/bus/private_net.sh (a private network namespace); "
-         "register them in CTest as: private_net.sh --port 77NN -- <test binary>";
-  const char* url_env = std::getenv("LCM_DEFAULT_URL");
-  ASSERT_TRUE(url_env != nullptr && url_env[0] != '\0') << "private_net.sh --port N sets LCM_DEFAULT_URL";
+using ChangingWorldMapperBusTest = testing::PrivateBusTest;
 
-  TempDir dir;
+TEST_F(ChangingWorldMapperBusTest, TheLiveMapperFollowsDoorsOpenedWhileTheFleetRuns) {
+  const char* url_env = url_.c_str();
+
+  testing::TempDir dir("minenav_changing_world_mapper");
   const ChangingWorldScenario doors = DoorsOpenScenario();
   ASSERT_EQ(doors.worlds.size(), 2u);
   const std::string closed = dir / "closed.json", open = dir / "open.json";
