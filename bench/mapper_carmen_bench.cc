@@ -32,7 +32,7 @@
 #include "common/file_io.h"
 #include "logger/carmen_log.h"
 #include "logger/relations.h"
-#include "logger/svg_render.h"
+#include "render/svg_render.h"
 #include "mapper/carmen_session_options.h"
 #include "mapper/mapping_session.h"
 #include "pose_estimator/iconic_estimator.h"

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "logger/run_log.h"
-#include "logger/svg_render.h"
+#include "render/svg_render.h"
 
 namespace minenav {
 

@@ -13,7 +13,7 @@
 #include "common/node/conversions.h"
 #include "common/node/event_log.h"
 #include "logger/log_tool_commands.h"
-#include "logger/survey.h"
+#include "sim/survey.h"
 #include "sim/changing_world.h"
 #include "sim/mine_generator.h"
 #include "sim/scenario.h"

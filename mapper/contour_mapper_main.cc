@@ -59,7 +59,7 @@
 #include "common/node/cpu_time.h"
 #include "common/node/node_runtime.h"
 #include "common/node/scan_odometry_sync.h"
-#include "logger/svg_render.h"
+#include "render/svg_render.h"
 #include "mapper/carmen_session_options.h"
 #include "mapper/contour_map_io.h"
 #include "mapper/map_checkpoint.h"

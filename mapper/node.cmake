@@ -9,7 +9,7 @@ minenav_test(NAME mapping_session_test NO_LCM
 
 # The contour_mapper process: batch over logs (--log) and live.
 minenav_executable(contour_mapper ${CMAKE_CURRENT_LIST_DIR}/contour_mapper_main.cc)
-target_link_libraries(contour_mapper PRIVATE minenav_mapping_session minenav_logger_core minenav_node Threads::Threads)
+target_link_libraries(contour_mapper PRIVATE minenav_mapping_session minenav_render minenav_node Threads::Threads)
 
 if(EXISTS "${CMAKE_SOURCE_DIR}/tests/child_process.cc")
   minenav_test(NAME contour_mapper_process_test

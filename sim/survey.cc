@@ -1,4 +1,4 @@
-#include "logger/survey.h"
+#include "sim/survey.h"
 
 #include <cmath>
 #include <memory>

@@ -1,4 +1,4 @@
-#include "logger/svg_render.h"
+#include "render/svg_render.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,7 +1,7 @@
 // The offline survey against independent references: brute-force ray casting
 // (common/geometry.h CastRay) for the ranges, the requested sigmas for the estimates.
 
-#include "logger/survey.h"
+#include "sim/survey.h"
 
 #include <gtest/gtest.h>
 
