@@ -12,6 +12,7 @@
 #include "common/file_io.h"
 #include "common/node/conversions.h"
 #include "common/node/event_log.h"
+#include "logger/log_tool_run.h"
 #include "logger/run_log.h"
 #include "logger/test_logs.h"
 
@@ -22,27 +23,9 @@ using logger_test::FileExists;
 using logger_test::ReadAll;
 using logger_test::TempPath;
 
-struct RunResult {
-  int exit_code = -1;
-  std::string out, err;
-};
-
-std::string Quote(const std::string& s) {
-  std::string q = "'";
-  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
-}
-
-RunResult LogTool(const std::string& args) {
-  const std::string out = TempPath("stdout.txt"), err = TempPath("stderr.txt");
-  const std::string cmd = std::string(LOG_TOOL_PATH) + " " + args + " >" + Quote(out) + " 2>" + Quote(err);
-  const int status = std::system(cmd.c_str());
-  RunResult r;
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  r.out = ReadAll(out);
-  r.err = ReadAll(err);
-  return r;
-}
+using logger_test::LogTool;
+using logger_test::Quote;
+using logger_test::RunResult;
 
 // The files in a directory other than the given ones (temporary files left behind).
 std::vector<std::string> FilesIn(const std::string& dir) {

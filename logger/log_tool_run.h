@@ -1,6 +1,6 @@
 #pragma once
 // Runs log_tool (LOG_TOOL_PATH, a compile definition) through the shell with its output in
-// temporary files: the helper of carmen_cli_test.cc and carmen_cli_real_test.cc.
+// temporary files: the helper of the log_tool command-line tests.
 
 #include <sys/wait.h>
 
@@ -20,9 +20,16 @@ struct RunResult {
   std::string out, err;
 };
 
+// `s` in single quotes for the shell.
+inline std::string Quote(const std::string& s) {
+  std::string q = "'";
+  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
 inline RunResult LogTool(const std::string& args) {
   const std::string out = TempPath("stdout.txt"), err = TempPath("stderr.txt");
-  const std::string cmd = std::string(LOG_TOOL_PATH) + " " + args + " >'" + out + "' 2>'" + err + "'";
+  const std::string cmd = std::string(LOG_TOOL_PATH) + " " + args + " >" + Quote(out) + " 2>" + Quote(err);
   const int status = std::system(cmd.c_str());
   RunResult r;
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
