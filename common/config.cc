@@ -351,4 +351,37 @@ std::string ConfigSchema::ConfigText() const {
   return os.str();
 }
 
+std::optional<std::string> PeekOption(const std::vector<std::string>& args, const std::string& key) {
+  std::string flag = "--" + key;
+  std::replace(flag.begin(), flag.end(), '_', '-');
+  const std::string flag_underscores = "--" + key;
+  std::optional<std::string> from_command_line, config_file;
+  for (size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    for (const std::string& f : {flag, flag_underscores}) {
+      if (a == f && i + 1 < args.size()) from_command_line = args[i + 1];
+      if (a.rfind(f + "=", 0) == 0) from_command_line = a.substr(f.size() + 1);
+    }
+    if (a == "--config" && i + 1 < args.size()) config_file = args[i + 1];
+    if (a.rfind("--config=", 0) == 0) config_file = a.substr(9);
+  }
+  if (from_command_line) return Trim(*from_command_line);
+  if (!config_file) return std::nullopt;
+  std::ifstream in(*config_file);
+  if (!in) throw UsageError(*config_file + ": cannot open config file");
+  std::optional<std::string> value;
+  std::string line;
+  while (std::getline(in, line)) {
+    const auto hash = line.find('#');
+    const std::string content = Trim(hash == std::string::npos ? line : line.substr(0, hash));
+    const auto eq = content.find('=');
+    if (eq != std::string::npos && Trim(content.substr(0, eq)) == key) value = Trim(content.substr(eq + 1));
+  }
+  return value;
+}
+
+std::optional<std::string> PeekOption(int argc, const char* const* argv, const std::string& key) {
+  return PeekOption(std::vector<std::string>(argv + (argc > 0 ? 1 : 0), argv + argc), key);
+}
+
 }  // namespace minenav

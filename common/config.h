@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <functional>
 #include <limits>
+#include <optional>
 #include <set>
 #include <stdexcept>
 #include <string>
@@ -99,6 +100,13 @@ class ConfigSchema {
   std::vector<std::string> positional_;
   std::set<std::string> set_keys_;
 };
+
+// The value option `key` will have once Parse() runs, read before the options are declared
+// (a preset that picks the defaults of the others): --key VALUE / --key=VALUE on the command
+// line, else `key = value` in the --config file, else nullopt. Throws UsageError when the
+// config file cannot be read.
+std::optional<std::string> PeekOption(const std::vector<std::string>& args, const std::string& key);
+std::optional<std::string> PeekOption(int argc, const char* const* argv, const std::string& key);
 
 // Parses "0.33", "3.33deg" or "0.1rad" into radians when `angle` is true; plain doubles
 // otherwise. Throws UsageError naming `what`.

@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
+
 #include <cstdio>
 #include <fstream>
 
@@ -115,6 +118,20 @@ TEST(ConfigSchemaTest, WasSetTellsGivenKeysFromDefaults) {
   schema.Parse({"--checkpoint-every", "10"});
   EXPECT_TRUE(schema.WasSet("checkpoint_every"));  // given, even though equal to the default
   EXPECT_FALSE(schema.WasSet("other"));
+}
+
+// Issue 12: `preset = carmen` in a config file showed under --print-config while the mapper
+// kept the survey values: the preset was read from the command line only.
+TEST(ConfigSchemaTest, PeekOptionReadsTheCommandLineThenTheConfigFile) {
+  const std::string path = (std::filesystem::temp_directory_path() / "minenav_peek_option.conf").string();
+  std::ofstream(path) << "# a preset in a file\nsome_key = 3\npreset = carmen   # comment\n";
+  EXPECT_EQ(PeekOption({"--config", path}, "preset").value_or(""), "carmen");
+  EXPECT_EQ(PeekOption({"--config=" + path, "--preset", "survey"}, "preset").value_or(""), "survey");
+  EXPECT_EQ(PeekOption({"--preset=survey"}, "preset").value_or(""), "survey");
+  EXPECT_FALSE(PeekOption({"--other", "1"}, "preset").has_value());
+  EXPECT_EQ(PeekOption({"--max-odometry-gap", "2"}, "max_odometry_gap").value_or(""), "2");
+  EXPECT_THROW(PeekOption({"--config", path + ".missing"}, "preset"), UsageError);
+  std::filesystem::remove(path);
 }
 
 }  // namespace minenav

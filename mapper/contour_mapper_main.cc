@@ -105,7 +105,7 @@ void Declare(ConfigSchema& s, ProcessOptions& p, mapper::MappingSessionOptions& 
   s.AddString("preset", &p.preset,
               "option set the other flags start from: survey (360-degree scans at stations, thesis 5.2) or\n"
               "carmen (180-degree SICK scans from a moving robot: the public CARMEN logs, imported with\n"
-              "log_tool import-carmen; mapper/carmen_session_options.h says why each value); command line only");
+              "log_tool import-carmen; mapper/carmen_session_options.h says why each value)");
   s.AddString("checkpoint", &p.checkpoint, "checkpoint file: resumed from when it exists, saved at shutdown");
   s.AddInt("checkpoint_every", &p.checkpoint_every,
            "with --checkpoint, also save it every this many handled scans (0 = at shutdown only)", 0, 1000000);
@@ -481,8 +481,9 @@ int Main(int argc, char** argv) {
   NodeRuntime runtime("contour_mapper", schema);
   ProcessOptions p;
   mapper::MappingSessionOptions so;
-  // The preset picks the defaults the other flags then override, so it is read first.
-  p.preset = FlagFromCommandLine(argc, argv, "--preset", "survey");
+  // The preset picks the defaults the other options then override, so it is read first,
+  // from the command line or the config file (what --print-config shows is in force).
+  p.preset = PeekOption(argc, argv, "preset").value_or("survey");
   if (p.preset == "carmen") {
     so = mapper::CarmenSessionOptions();
     p.final_refinement_rounds = 0;  // the CARMEN figures are tracking without a final refinement

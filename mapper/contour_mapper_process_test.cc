@@ -288,4 +288,25 @@ TEST_F(ContourMapperSignalTest, AnOutputNamingAnInputIsRefusedAndTheInputKept) {
 }
 
 }  // namespace
+// Issue 12: `preset = carmen` in a config file showed under --print-config while the mapper
+// kept the survey values (the preset was read from the command line only).
+TEST_F(ContourMapperProcessTest, APresetInAConfigFileIsInForce) {
+  const fs::path conf = dir_ / "carmen.conf";
+  std::ofstream(conf) << "preset = carmen\n";
+  auto printed = [&](const std::vector<std::string>& extra, const std::string& name) {
+    std::vector<std::string> argv = {MINENAV_CONTOUR_MAPPER_BIN, "--print-config"};
+    argv.insert(argv.end(), extra.begin(), extra.end());
+    EXPECT_EQ(RunProcess(argv, dir_ / name), 0);
+    return ReadTextFile((dir_ / name).string());
+  };
+  const std::string from_file = printed({"--config", conf.string()}, "file.txt");
+  EXPECT_NE(from_file.find("preset = carmen"), std::string::npos) << from_file;
+  EXPECT_NE(from_file.find("max_odometry_gap = 5"), std::string::npos) << from_file;   // carmen's, not 1
+  EXPECT_NE(from_file.find("final_refinement_rounds = 0"), std::string::npos) << from_file;
+  // The same as the preset on the command line; a flag still overrides the preset.
+  EXPECT_EQ(printed({"--preset", "carmen"}, "flag.txt"), from_file);
+  const std::string overridden = printed({"--config", conf.string(), "--max-odometry-gap", "2"}, "override.txt");
+  EXPECT_NE(overridden.find("max_odometry_gap = 2"), std::string::npos) << overridden;
+}
+
 }  // namespace minenav
