@@ -18,6 +18,7 @@
 #include "mapper/contour_map_io.h"
 #include "mapper/map_evaluation.h"
 #include "tests/child_process.h"
+#include "tests/sanitizer.h"
 
 namespace minenav {
 namespace {
@@ -128,7 +129,7 @@ TEST_F(ContourMapperProcessTest, AMapWithA20KilometreSegmentIsRefusedAtOnce) {
                         "--map-out", (dir_ / "out.json").string()},
                        dir_ / "out.txt"),
             2);
-  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 2.0);
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 2.0 * testing::kSlowdown);
   const auto lines = testing::LinesContaining(ReadTextFile((dir_ / "out.txt").string()), "error");
   ASSERT_EQ(lines.size(), 1u) << ReadTextFile((dir_ / "out.txt").string());
   EXPECT_NE(lines[0].find("forged.json: contour 0: segment 0 is 28284.3 m long, more than the 1000 m"),
@@ -215,7 +216,7 @@ TEST_F(ContourMapperSignalTest, SigtermMidLogKeepsPartialOutputsAndExits130) {
                                            "scan 6,", output);
   const std::string log = ReadTextFile(output);
   EXPECT_EQ(code, kExitInterrupted) << log;
-  EXPECT_LT(seconds, 2.0) << log;
+  EXPECT_LT(seconds, 2.0 * testing::kSlowdown) << log;
   for (const std::string& f : {map, poses, svg, out_log}) {
     EXPECT_FALSE(fs::exists(f)) << f << " written as if the run were complete";
     EXPECT_TRUE(fs::exists(f + ".partial")) << f << ".partial missing: " << log;
@@ -246,7 +247,7 @@ TEST_F(ContourMapperSignalTest, SigtermInTheFinalRefinementStopsItAndKeepsPartia
       InterruptAt({"--map-out", map, "--poses-out", poses}, "20 scans received:", output);
   const std::string log = ReadTextFile(output);
   EXPECT_EQ(code, kExitInterrupted) << log;
-  EXPECT_LT(seconds, 2.0) << log;
+  EXPECT_LT(seconds, 2.0 * testing::kSlowdown) << log;
   EXPECT_FALSE(fs::exists(map));
   EXPECT_FALSE(fs::exists(poses));
   EXPECT_EQ(LoadPosesCsv(poses + ".partial").size(), 20u) << log;

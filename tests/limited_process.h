@@ -15,19 +15,9 @@
 #include <string>
 #include <vector>
 
-namespace minenav::testing {
+#include "tests/sanitizer.h"
 
-#if defined(__SANITIZE_ADDRESS__)
-inline constexpr bool kUnderAddressSanitizer = true;
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-inline constexpr bool kUnderAddressSanitizer = true;
-#else
-inline constexpr bool kUnderAddressSanitizer = false;
-#endif
-#else
-inline constexpr bool kUnderAddressSanitizer = false;
-#endif
+namespace minenav::testing {
 
 // RLIMIT_AS for the processes under test: 3 GiB (0 = none under ASan). Not lower: LCM
 // 1.3.1 allocates `count` elements before it reads past the buffer, so below ~2.2 GiB a
@@ -38,9 +28,6 @@ inline constexpr uint64_t kHostileAddressSpaceLimit = kUnderAddressSanitizer ? 0
 // ASan, whose shadow memory and quarantine count as resident). Every hostile payload of
 // the tests would make the unfixed code zero-fill at least 1 GiB.
 inline constexpr int64_t kMaxPeakRssKb = kUnderAddressSanitizer ? 700 * 1024 : 300 * 1024;
-// Slow-down factor for timing assertions (ASan/UBSan builds run 2-3x slower).
-inline constexpr double kSlowdown = kUnderAddressSanitizer ? 3.0 : 1.0;
-
 class LimitedProcess {
  public:
   // argv[0] must be a path (no PATH lookup). stdout and stderr go to `output_path`
