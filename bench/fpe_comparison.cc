@@ -68,7 +68,7 @@ void RunBoth(const std::vector<Scene>& scenes, const LadarModel& model, double p
       std::exit(3);
     }
     const LadarSimulator sim(model, seed * 1000 + s);
-    const SegmentGrid world(sc.world);
+    const StaticSegmentIndex world(sc.world);
     for (size_t k = 0; k < sc.stations.size(); ++k) {
       const Pose2& truth = sc.stations[k];
       const LadarScan scan = sim.Simulate(world, truth, Pose2(), static_cast<int64_t>(k), static_cast<int64_t>(k));

@@ -42,7 +42,7 @@ int main(int argc, char** argv) {
     const MockupWorld mockup = GenerateIndoorMockup(static_cast<uint64_t>(draw + 1));
     const FeaturePoseEstimator fpe(mockup.map, options);
     const LadarSimulator sim(fpeb::MockupCyclone(points), static_cast<uint64_t>(100 + draw));
-    const SegmentGrid world(mockup.World());
+    const StaticSegmentIndex world(mockup.World());
     for (size_t k = 0; k < mockup.stations.size(); ++k) {
       const Pose2 truth = mockup.stations[k].pose;
       const LadarScan scan = sim.Simulate(world, truth, Pose2(), static_cast<int64_t>(k), static_cast<int64_t>(k));

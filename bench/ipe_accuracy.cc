@@ -44,7 +44,7 @@ int main(int argc, char** argv) {
   // --- 1. Mockup ------------------------------------------------------------------------
   {
     const MockupWorld mockup = GenerateIndoorMockup(1);
-    const SegmentGrid world(mockup.World());
+    const StaticSegmentIndex world(mockup.World());
     const LadarSimulator cyclone(LadarModel::Cyclone(2048), 5);
     CorrespondenceOptions copt;
     const auto map = MakeCorrespondenceSearch(PrepareSegmentMap(mockup.map).segments, copt);
@@ -100,7 +100,7 @@ int main(int argc, char** argv) {
   MineOptions mine;
   const std::vector<Segment> mine_map = PrepareSegmentMap(GenerateRoomAndPillarMine(mine)).segments;
   const std::vector<Station> stations = MineSurveyStations(mine, 42);
-  const SegmentGrid mine_world(mine_map);
+  const StaticSegmentIndex mine_world(mine_map);
   const LadarSimulator typhoon(LadarModel::Typhoon(), 17);
   CorrespondenceOptions copt;
   copt.max_distance = 3.0;

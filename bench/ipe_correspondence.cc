@@ -61,7 +61,7 @@ int main(int argc, char** argv) {
   LadarModel cyclone_model = LadarModel::Cyclone(2048);
   cyclone_model.min_range = 0.5;
   const LadarSimulator cyclone(cyclone_model, 7);
-  const SegmentGrid mockup_world(mockup.World());
+  const StaticSegmentIndex mockup_world(mockup.World());
   const Pose2 query_pose = mockup.stations[2].pose;
   const LadarScan query = cyclone.Simulate(mockup_world, query_pose, Pose2(), 0, 0);
   std::vector<Eigen::Vector2d> query_world;
@@ -123,7 +123,7 @@ int main(int argc, char** argv) {
   std::vector<Segment> mine_map = PrepareSegmentMap(GenerateRoomAndPillarMine(mine)).segments;
   const std::vector<Station> stations = MineSurveyStations(mine, 42);
   const LadarSimulator typhoon(LadarModel::Typhoon(), 11);
-  const SegmentGrid mine_world(mine_map);
+  const StaticSegmentIndex mine_world(mine_map);
   CorrespondenceOptions copt;
   copt.max_distance = 2.0;
   const double b0 = bench::Now();

@@ -35,7 +35,7 @@ int main(int argc, char** argv) {
   nlohmann::json report;
   MineOptions mine;
   const std::vector<Segment> world = GenerateRoomAndPillarMine(mine);
-  const SegmentGrid grid(world);
+  const StaticSegmentIndex grid(world);
   const LadarSimulator typhoon(LadarModel::Typhoon(), 23);
 
   IconicEstimatorOptions base;

@@ -1,5 +1,5 @@
 // Ladar scan simulation speed: a 2048-point scan of a large synthetic room-and-pillar mine
-// (thesis 5.2.1), ray-cast through the uniform grid (sensor_driver/segment_grid.h) and by
+// (thesis 5.2.1), ray-cast through the segment index (common/segment_index.h) and by
 // brute force (common/geometry.h CastRay), side by side, plus the full Typhoon model
 // (noise, quantisation, mixed pixels) and a whole 42-station survey.
 //
@@ -18,8 +18,8 @@
 #include "bench/bench_util.h"
 #include "common/config.h"
 #include "common/file_io.h"
+#include "common/segment_index.h"
 #include "sensor_driver/ladar_simulator.h"
-#include "sensor_driver/segment_grid.h"
 #include "sim/mine_generator.h"
 
 namespace {
@@ -57,7 +57,7 @@ int Run(int argc, char** argv) {
   const std::vector<minenav::Station> survey = minenav::MineSurveyStations(mine, stations);
 
   double t0 = Seconds();
-  const minenav::SegmentGrid grid(world);
+  const minenav::StaticSegmentIndex grid(world);
   const double build_s = Seconds() - t0;
 
   minenav::LadarModel ideal = minenav::LadarModel::Typhoon().Ideal();

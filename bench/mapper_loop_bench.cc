@@ -24,10 +24,10 @@
 #include "bench/bench_util.h"
 #include "common/config.h"
 #include "common/file_io.h"
+#include "common/segment_index.h"
 #include "mapper/contour_mapper.h"
 #include "mapper/map_evaluation.h"
 #include "sensor_driver/ladar_simulator.h"
-#include "sensor_driver/segment_grid.h"
 #include "sim/mine_generator.h"
 #include "sim/odometry_model.h"
 
@@ -93,7 +93,7 @@ int Run(int argc, char** argv) {
   odo.translation_noise = 0.005;
   odo.rotation_noise = minenav::DegToRad(0.05);
   const std::vector<Pose2> dead = minenav::DeadReckonAlong(truth, {}, odo, static_cast<uint64_t>(seed));
-  const minenav::SegmentGrid grid(world);
+  const minenav::StaticSegmentIndex grid(world);
   const minenav::LadarSimulator sim(minenav::LadarModel::Typhoon(), static_cast<uint64_t>(seed));
   std::vector<minenav::LadarScan> scans;
   for (size_t k = 0; k < truth.size(); ++k)

@@ -19,10 +19,10 @@
 #include "bench/bench_util.h"
 #include "common/config.h"
 #include "common/file_io.h"
+#include "common/segment_index.h"
 #include "mapper/contour_mapper.h"
 #include "mapper/map_evaluation.h"
 #include "sensor_driver/ladar_simulator.h"
-#include "sensor_driver/segment_grid.h"
 #include "sim/mine_generator.h"
 
 namespace {
@@ -72,7 +72,7 @@ int Run(int argc, char** argv) {
   mine.seed = static_cast<uint64_t>(seed);
   const std::vector<minenav::Segment> world = minenav::GenerateResearchMine(mine);
   const std::vector<minenav::Station> survey = minenav::ResearchMineStations(mine, stations);
-  const minenav::SegmentGrid grid(world);
+  const minenav::StaticSegmentIndex grid(world);
   const minenav::LadarSimulator sim(minenav::LadarModel::Typhoon(), static_cast<uint64_t>(seed));
   std::mt19937 rng(static_cast<unsigned>(seed));
   std::normal_distribution<double> nxy(0.0, 0.33), nth(0.0, minenav::DegToRad(3.33));

@@ -22,11 +22,11 @@
 #include "bench/bench_util.h"
 #include "common/config.h"
 #include "common/file_io.h"
+#include "common/segment_index.h"
 #include "mapper/contour_map_io.h"
 #include "mapper/contour_mapper.h"
 #include "mapper/map_evaluation.h"
 #include "sensor_driver/ladar_simulator.h"
-#include "sensor_driver/segment_grid.h"
 #include "sim/mine_generator.h"
 
 namespace {
@@ -78,7 +78,7 @@ int Run(int argc, char** argv) {
   mine.seed = static_cast<uint64_t>(seed);
   const std::vector<minenav::Segment> world = minenav::GenerateRoomAndPillarMine(mine);
   const std::vector<minenav::Station> survey = minenav::MineSurveyStations(mine, stations);
-  const minenav::SegmentGrid grid(world);
+  const minenav::StaticSegmentIndex grid(world);
   const minenav::LadarSimulator sim(minenav::LadarModel::Typhoon(), static_cast<uint64_t>(seed));
   const minenav::LadarSimulator ideal(minenav::LadarModel::Typhoon().Ideal(), static_cast<uint64_t>(seed));
 

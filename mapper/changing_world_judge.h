@@ -33,7 +33,7 @@ struct CheckFigures {
 
 inline bool NearMap(const ContourMap& map, const Eigen::Vector2d& p, double tolerance) {
   bool hit = false;
-  map.grid().ForEachNear(p, tolerance, [&](const SegmentRef& r) {
+  map.ForEachSegmentNear(p, tolerance, [&](const SegmentRef& r) {
     if (!hit && PointToSegmentDistance(p, map.Get(r.contour).GetSegment(r.segment)) <= tolerance) hit = true;
   });
   return hit;

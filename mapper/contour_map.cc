@@ -26,6 +26,21 @@ const Contour& ContourMap::Get(int id) const {
   return *c;
 }
 
+std::vector<SegmentRef> ContourMap::SegmentsNear(const Eigen::Vector2d& p, double radius) const {
+  const std::vector<SegmentId> ids = grid_.QueryPoint(p, radius);
+  std::vector<SegmentRef> out;
+  out.reserve(ids.size());
+  for (const SegmentId& id : ids) out.push_back({id.group, id.index});
+  return out;
+}
+
+void ContourMap::Reindex(const Contour& c) {
+  std::vector<Segment> segments;
+  segments.reserve(static_cast<size_t>(c.NumSegments()));
+  for (int k = 0; k < c.NumSegments(); ++k) segments.push_back(c.GetSegment(k));
+  grid_.Insert(c.id, segments);
+}
+
 Contour& ContourMap::Mutable(int id) {
   const auto it = contours_.find(id);
   if (it == contours_.end()) throw std::logic_error("no contour " + std::to_string(id));

@@ -1,6 +1,7 @@
 #pragma once
 // The contour map (thesis 4.1): a set of contours with stable ids, the edit operations that
-// map expansion (4.4) and the dynamic-world editing of 4.8.1 need, and a segment grid that
+// map expansion (4.4) and the dynamic-world editing of 4.8.1 need, and a segment index
+// (common/segment_index.h, one group per contour, re-indexed as a whole on every edit) that
 // every edit keeps in step. All edits go through this class so the index never goes stale.
 //
 // Edit operations (4.8.1 names):
@@ -18,8 +19,8 @@
 #include <optional>
 #include <vector>
 
+#include "common/segment_index.h"
 #include "mapper/contour.h"
-#include "mapper/segment_grid.h"
 
 namespace minenav::mapper {
 
@@ -37,10 +38,15 @@ class ContourMap {
   int NumSegments() const;
   double TotalLength() const;
   const std::map<int, Contour>& contours() const { return contours_; }
-  const SegmentGrid& grid() const { return grid_; }
-  // Candidate segments within `radius` of p (superset; callers test exact distance).
-  std::vector<SegmentRef> SegmentsNear(const Eigen::Vector2d& p, double radius) const {
-    return grid_.QueryPoint(p, radius);
+  // The index: group = contour id, index = segment of the contour.
+  const IncrementalSegmentIndex& grid() const { return grid_; }
+  // Candidate segments within `radius` of p (superset; callers test exact distance), sorted.
+  std::vector<SegmentRef> SegmentsNear(const Eigen::Vector2d& p, double radius) const;
+  // Calls fn(SegmentRef) for candidates within `radius` of p without allocating (may repeat
+  // a segment; callers test exact distance).
+  template <typename Fn>
+  void ForEachSegmentNear(const Eigen::Vector2d& p, double radius, Fn&& fn) const {
+    grid_.ForEachNear(p, radius, [&](const SegmentId& id) { fn(SegmentRef{id.group, id.index}); });
   }
 
   // --- edits. Each returns the id(s) it produced; ids of removed contours are never reused.
@@ -105,11 +111,11 @@ class ContourMap {
 
  private:
   Contour& Mutable(int id);
-  void Reindex(const Contour& c) { grid_.Insert(c); }
+  void Reindex(const Contour& c);
 
   std::map<int, Contour> contours_;
   int next_id_ = 0;
-  SegmentGrid grid_;
+  IncrementalSegmentIndex grid_;
 };
 
 }  // namespace minenav::mapper

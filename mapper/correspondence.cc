@@ -21,7 +21,7 @@ std::vector<PointMatch> MatchPoints(const std::vector<Eigen::Vector2d>& world_po
     const Eigen::Vector2d& p = world_points[k];
     PointMatch& best = out[k];
     double best_abs = threshold;
-    map.grid().ForEachNear(p, threshold, [&](const SegmentRef& ref) {
+    map.ForEachSegmentNear(p, threshold, [&](const SegmentRef& ref) {
       if (!cached || cached->id != ref.contour) cached = map.Find(ref.contour);
       const Eigen::Vector2d& s = cached->points[static_cast<size_t>(cached->SegmentStart(ref.segment))];
       const Eigen::Vector2d& e = cached->points[static_cast<size_t>(cached->SegmentEnd(ref.segment))];

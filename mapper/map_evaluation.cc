@@ -3,24 +3,18 @@
 #include <algorithm>
 #include <cmath>
 
-#include "mapper/segment_grid.h"
+#include "common/segment_index.h"
 
 namespace minenav::mapper {
 
 MapDeviation ContourDeviation(const ContourMap& map, const std::vector<Segment>& truth, double step) {
-  // Index the true walls in a grid of their own (as a one-segment "contour" each).
-  SegmentGrid grid(2.0);
-  for (size_t k = 0; k < truth.size(); ++k) {
-    Contour c;
-    c.id = static_cast<int>(k);
-    c.points = {truth[k].a, truth[k].b};
-    grid.Insert(c);
-  }
+  // Index the true walls in a grid of their own.
+  const StaticSegmentIndex grid(truth, 2.0);
   auto nearest = [&](const Eigen::Vector2d& p) {
     double best = 1e300;
     for (double r = 1.0; r <= 64.0 && best > r; r *= 2.0)
-      grid.ForEachNear(p, r, [&](const SegmentRef& ref) {
-        best = std::min(best, PointToSegmentDistance(p, truth[static_cast<size_t>(ref.contour)]));
+      grid.ForEachNear(p, r, [&](int k) {
+        best = std::min(best, PointToSegmentDistance(p, truth[static_cast<size_t>(k)]));
       });
     if (best > 64.0)
       for (const Segment& s : truth) best = std::min(best, PointToSegmentDistance(p, s));
@@ -54,7 +48,7 @@ double Coverage(const std::vector<Eigen::Vector2d>& points, const ContourMap& ma
   int covered = 0;
   for (const Eigen::Vector2d& p : points) {
     bool hit = false;
-    map.grid().ForEachNear(p, distance, [&](const SegmentRef& ref) {
+    map.ForEachSegmentNear(p, distance, [&](const SegmentRef& ref) {
       if (!hit && PointToSegmentDistance(p, map.Get(ref.contour).GetSegment(ref.segment)) <= distance) hit = true;
     });
     covered += hit ? 1 : 0;

@@ -36,7 +36,7 @@ int RemoveRedundantContours(ContourMap& map, const RedundantContourOptions& o) {
       const Eigen::Vector2d& p = c->points[static_cast<size_t>(v)];
       const Eigen::Vector2d normal = VertexNormal(*c, v);
       bool hit = false;
-      map.grid().ForEachNear(p, o.distance, [&](const SegmentRef& ref) {
+      map.ForEachSegmentNear(p, o.distance, [&](const SegmentRef& ref) {
         if (hit || ref.contour >= id) return;  // only older contours
         const Segment s = map.Get(ref.contour).GetSegment(ref.segment);
         const Eigen::Vector2d d = s.b - s.a;

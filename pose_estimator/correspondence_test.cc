@@ -7,7 +7,6 @@
 #include "pose_estimator/grid_search_correspondence.h"
 #include "pose_estimator/iconic_test_world.h"
 #include "pose_estimator/lookup_table_correspondence.h"
-#include "pose_estimator/segment_grid.h"
 #include "pose_estimator/segment_map.h"
 
 namespace minenav {
@@ -104,26 +103,6 @@ TEST(CorrespondenceTest, FactoryAndNames) {
   }
   EXPECT_FALSE(ParseCorrespondenceMethod("fast", &m));
   EXPECT_DOUBLE_EQ(ChooseCellSize({{0, 0, 0.4, 0}, {0, 0, 0.6, 0}, {0, 0, 0.5, 0}}), 0.25);
-}
-
-TEST(SegmentGridTest, BoxDistancesMatchSampling) {
-  std::mt19937 rng(11);
-  std::uniform_real_distribution<double> u(-3.0, 3.0);
-  const Eigen::Vector2d lo(0, 0), hi(1, 1);
-  for (int k = 0; k < 200; ++k) {
-    const Segment s(u(rng), u(rng), u(rng), u(rng));
-    double sampled_min = 1e9, sampled_max = 0.0;
-    for (int i = 0; i <= 40; ++i)
-      for (int j = 0; j <= 40; ++j) {
-        const double d = PointToSegmentDistance({i / 40.0, j / 40.0}, s);
-        sampled_min = std::min(sampled_min, d);
-        sampled_max = std::max(sampled_max, d);
-      }
-    const double dmin = BoxSegmentMinDistance(lo, hi, s);
-    EXPECT_LE(dmin, sampled_min + 1e-12);
-    EXPECT_GE(dmin, sampled_min - 0.04);
-    EXPECT_NEAR(BoxSegmentMaxDistance(lo, hi, s), sampled_max, 1e-12);
-  }
 }
 
 TEST(SegmentMapTest, DropsZeroLengthDuplicateAndNonFinite) {

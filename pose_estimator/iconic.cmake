@@ -9,7 +9,6 @@ minenav_algorithm_library(minenav_iconic
   ${CMAKE_CURRENT_LIST_DIR}/multi_scan_matcher.cc
   ${CMAKE_CURRENT_LIST_DIR}/scan_polylines.cc
   ${CMAKE_CURRENT_LIST_DIR}/scan_set_map.cc
-  ${CMAKE_CURRENT_LIST_DIR}/segment_grid.cc
   ${CMAKE_CURRENT_LIST_DIR}/segment_map.cc)
 target_link_libraries(minenav_iconic PUBLIC minenav_common Eigen3::Eigen)
 

@@ -11,8 +11,8 @@ namespace {
 // Slack on the pruning test so that rounding never drops a segment that ties.
 constexpr double kPruneSlack = 1e-9;
 
-// Fast versions of BoxSegmentMin/MaxDistance (segment_grid.h) for the build's inner loop;
-// the unit test checks them against each other through the brute-force equality.
+// Fast versions of BoxSegmentMin/MaxDistance (common/segment_index.h) for the build's inner
+// loop; the unit test checks them against each other through the brute-force equality.
 double BoxMaxDistance(const Eigen::Vector2d& lo, const Eigen::Vector2d& hi, const PreparedSegment& s) {
   const double d2 = std::max(std::max(s.SquaredDistance(lo), s.SquaredDistance(hi)),
                              std::max(s.SquaredDistance({lo.x(), hi.y()}), s.SquaredDistance({hi.x(), lo.y()})));
@@ -25,26 +25,8 @@ double PointBoxSquaredDistance(const Eigen::Vector2d& p, const Eigen::Vector2d& 
   return dx * dx + dy * dy;
 }
 
-// Liang-Barsky: does the segment a + t d, t in [0, 1], meet the box?
-bool SegmentMeetsBox(const Eigen::Vector2d& lo, const Eigen::Vector2d& hi, const PreparedSegment& s) {
-  double t0 = 0.0, t1 = 1.0;
-  const double p[4] = {-s.d.x(), s.d.x(), -s.d.y(), s.d.y()};
-  const double q[4] = {s.a.x() - lo.x(), hi.x() - s.a.x(), s.a.y() - lo.y(), hi.y() - s.a.y()};
-  for (int k = 0; k < 4; ++k) {
-    if (p[k] == 0.0) {
-      if (q[k] < 0.0) return false;
-    } else {
-      const double r = q[k] / p[k];
-      if (p[k] < 0.0) t0 = std::max(t0, r);
-      else t1 = std::min(t1, r);
-      if (t0 > t1) return false;
-    }
-  }
-  return true;
-}
-
 double BoxMinDistance(const Eigen::Vector2d& lo, const Eigen::Vector2d& hi, const PreparedSegment& s) {
-  if (SegmentMeetsBox(lo, hi, s)) return 0.0;
+  if (SegmentMeetsBox(s.a, s.d, lo, hi)) return 0.0;
   // Disjoint convex sets: the least distance is between a vertex of one and the other.
   double d2 = std::min(PointBoxSquaredDistance(s.a, lo, hi), PointBoxSquaredDistance(s.a + s.d, lo, hi));
   d2 = std::min(d2, std::min(std::min(s.SquaredDistance(lo), s.SquaredDistance(hi)),
@@ -76,7 +58,7 @@ LookupTableCorrespondence::LookupTableCorrespondence(std::vector<Segment> segmen
 
   // Draw the map: every cell a segment passes through lists it.
   for (size_t i = 0; i < segments_.size(); ++i) {
-    for (const auto& [ix, iy] : CellsTouchedBySegment(frame_, segments_[i])) {
+    ForEachCellTouched(frame_, frame_.Cells(), segments_[i], kNoCellLimit, [&](int ix, int iy) {
       const int64_t k = frame_.Index(ix, iy);
       const Eigen::Vector2d lo = frame_.CellMin(ix, iy);
       lists[static_cast<size_t>(k)].push_back({static_cast<int32_t>(i), 0.0});
@@ -85,7 +67,7 @@ LookupTableCorrespondence::LookupTableCorrespondence(std::vector<Segment> segmen
         queued[static_cast<size_t>(k)] = 1;
         queue.push_back(k);
       }
-    }
+    });
   }
 
   // Grassfire: a cell's lists flow to its 8 neighbours; a neighbour keeps what may be

@@ -14,8 +14,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "common/segment_index.h"
 #include "pose_estimator/correspondence.h"
-#include "pose_estimator/segment_grid.h"
 
 namespace minenav {
 

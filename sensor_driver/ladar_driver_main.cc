@@ -28,6 +28,7 @@
 #include "common/node/conversions.h"
 #include "common/node/event_log.h"
 #include "common/node/node_runtime.h"
+#include "common/segment_index.h"
 #include "minenav/heartbeat_t.hpp"
 #include "minenav/ladar_scan_t.hpp"
 #include "minenav/line_map_t.hpp"
@@ -35,7 +36,6 @@
 #include "sensor_driver/ladar_model.h"
 #include "sensor_driver/ladar_simulator.h"
 #include "sensor_driver/scan_schedule.h"
-#include "sensor_driver/segment_grid.h"
 
 namespace minenav {
 namespace {
@@ -153,18 +153,18 @@ int RunSimulation(NodeRuntime& runtime, const LadarDriverOptions& o, const Ladar
   const int64_t buffer_us = std::llround(o.truth_buffer * 1e6);
   const int64_t max_gap_us = std::llround(o.max_truth_gap * 1e6);
 
-  std::unique_ptr<SegmentGrid> grid;
+  std::unique_ptr<StaticSegmentIndex> grid;
   std::vector<Segment> world_segments;
   if (!o.world.empty()) {
     world_segments = LoadSegmentsJson(o.world);
-    grid = std::make_unique<SegmentGrid>(world_segments);
+    grid = std::make_unique<StaticSegmentIndex>(world_segments);
     MINENAV_LOG(kInfo) << "world " << o.world << ": " << world_segments.size() << " segments";
   } else {
     Subscribe<line_map_t>(bus, o.world_channel, [&](const line_map_t& m) {
       std::vector<Segment> segments = SegmentsFromLcm(m);
       if (grid != nullptr && SameSegments(segments, world_segments)) return;
       world_segments = std::move(segments);
-      grid = std::make_unique<SegmentGrid>(world_segments);
+      grid = std::make_unique<StaticSegmentIndex>(world_segments);
       MINENAV_LOG(kInfo) << "world from " << o.world_channel << " '" << m.name << "' version " << m.version
                          << ": " << world_segments.size() << " segments";
     });

@@ -24,15 +24,15 @@ LadarSimulator::LadarSimulator(const LadarModel& model, uint64_t seed) : model_(
 
 LadarScan LadarSimulator::Simulate(const std::vector<Segment>& world, const Pose2& world_T_vehicle,
                                    const Pose2& sensor_offset, int64_t utime, int64_t scan_id) const {
-  return Simulate(SegmentGrid(world), world_T_vehicle, sensor_offset, utime, scan_id);
+  return Simulate(StaticSegmentIndex(world), world_T_vehicle, sensor_offset, utime, scan_id);
 }
 
-LadarScan LadarSimulator::Simulate(const SegmentGrid& world, const Pose2& world_T_vehicle,
+LadarScan LadarSimulator::Simulate(const StaticSegmentIndex& world, const Pose2& world_T_vehicle,
                                    const Pose2& sensor_offset, int64_t utime, int64_t scan_id) const {
   return SimulateDetailed(world, world_T_vehicle, sensor_offset, utime, scan_id).scan;
 }
 
-SimulatedScan LadarSimulator::SimulateDetailed(const SegmentGrid& world, const Pose2& world_T_vehicle,
+SimulatedScan LadarSimulator::SimulateDetailed(const StaticSegmentIndex& world, const Pose2& world_T_vehicle,
                                                const Pose2& sensor_offset, int64_t utime,
                                                int64_t scan_id) const {
   const LadarModel& m = model_;

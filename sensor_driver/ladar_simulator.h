@@ -4,7 +4,8 @@
 // distance to the nearest intersection. Random noise was added to the range." Plus the
 // sensor effects of LadarModel (limits, quantisation, divergence, mixed pixels).
 //
-// Ray casting goes through a SegmentGrid (identical answers to brute force, much faster).
+// Ray casting goes through a StaticSegmentIndex (common/segment_index.h: identical answers to
+// brute force, much faster).
 // Deterministic: the random numbers of a scan depend only on (seed, scan_id), so a scan
 // can be regenerated alone and the order of calls does not matter.
 //
@@ -17,8 +18,8 @@
 #include "common/geometry.h"
 #include "common/pose2.h"
 #include "common/scan.h"
+#include "common/segment_index.h"
 #include "sensor_driver/ladar_model.h"
-#include "sensor_driver/segment_grid.h"
 
 namespace minenav {
 
@@ -42,9 +43,9 @@ class LadarSimulator {
   LadarScan Simulate(const std::vector<Segment>& world, const Pose2& world_T_vehicle,
                      const Pose2& sensor_offset, int64_t utime, int64_t scan_id) const;
   // Same with a prebuilt index (build it once per world version: this is the fast path).
-  LadarScan Simulate(const SegmentGrid& world, const Pose2& world_T_vehicle,
+  LadarScan Simulate(const StaticSegmentIndex& world, const Pose2& world_T_vehicle,
                      const Pose2& sensor_offset, int64_t utime, int64_t scan_id) const;
-  SimulatedScan SimulateDetailed(const SegmentGrid& world, const Pose2& world_T_vehicle,
+  SimulatedScan SimulateDetailed(const StaticSegmentIndex& world, const Pose2& world_T_vehicle,
                                  const Pose2& sensor_offset, int64_t utime, int64_t scan_id) const;
 
   const LadarModel& model() const { return model_; }

@@ -3,8 +3,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
 
 #include "common/angle.h"
+#include "common/segment_index.h"
 #include "sim/mine_generator.h"
 
 namespace minenav {
@@ -66,7 +68,7 @@ TEST(LadarModelTest, ValidateNamesTheBadParameter) {
 
 TEST(LadarSimulatorTest, NoiselessPointsLieOnTheWalls) {
   const std::vector<Segment> world = Mine();
-  const SegmentGrid grid(world);
+  const StaticSegmentIndex grid(world);
   const LadarSimulator sim(LadarModel::Typhoon().Ideal(), 3);
   const Pose2 sensor_offset(0.4, -0.2, 0.1);
   int valid = 0;
@@ -92,7 +94,7 @@ TEST(LadarSimulatorTest, RangeLimitsAreRespected) {
   std::vector<Segment> world{Segment(1.0, -0.5, 1.0, 0.5), Segment(-20.0, -5.0, -20.0, 5.0),
                              Segment(-5.0, 20.0, 5.0, 20.0), Segment(-5.0, -60.0, 5.0, -60.0)};
   LadarModel m = LadarModel::Typhoon().Ideal();
-  const SimulatedScan s = LadarSimulator(m, 1).SimulateDetailed(SegmentGrid(world), Pose2(), Pose2(), 0, 0);
+  const SimulatedScan s = LadarSimulator(m, 1).SimulateDetailed(StaticSegmentIndex(world), Pose2(), Pose2(), 0, 0);
   int near = 0, far = 0, ok = 0;
   for (size_t i = 0; i < s.scan.ranges.size(); ++i) {
     const double t = s.true_range[i];
@@ -131,7 +133,7 @@ TEST(LadarSimulatorTest, RangeResolutionQuantises) {
   m.min_range = 0.5;
   const std::vector<Segment> world = Mine();
   const Station st = MineSurveyStations(MineOptions(), 42)[10];
-  const SimulatedScan s = LadarSimulator(m, 1).SimulateDetailed(SegmentGrid(world), st.pose, Pose2(), 0, 0);
+  const SimulatedScan s = LadarSimulator(m, 1).SimulateDetailed(StaticSegmentIndex(world), st.pose, Pose2(), 0, 0);
   int valid = 0;
   for (size_t i = 0; i < s.scan.ranges.size(); ++i) {
     if (!s.scan.IsValid(i)) continue;
@@ -147,7 +149,7 @@ TEST(LadarSimulatorTest, NoiseStandardDeviationMatchesSigma) {
   LadarModel m = LadarModel::Typhoon().Ideal();
   m.range_sigma = 0.05;
   const std::vector<Segment> world = Mine();
-  const SegmentGrid grid(world);
+  const StaticSegmentIndex grid(world);
   const LadarSimulator sim(m, 11);
   const Station st = MineSurveyStations(MineOptions(), 42)[20];
   double sum = 0.0, sum2 = 0.0;
@@ -173,7 +175,7 @@ TEST(LadarSimulatorTest, FullTyphoonModelErrorIsNoisePlusQuantisation) {
   // sqrt(sigma^2 + q^2 / 12) away from mixed pixels; mixed pixels are few.
   const LadarModel m = LadarModel::Typhoon();
   const std::vector<Segment> world = Mine();
-  const SegmentGrid grid(world);
+  const StaticSegmentIndex grid(world);
   const LadarSimulator sim(m, 21);
   double sum2 = 0.0;
   int n = 0, mixed = 0, valid = 0;
@@ -202,7 +204,7 @@ TEST(LadarSimulatorTest, MixedPixelsOnlyAtOcclusionEdges) {
   m.mixed_pixel_min_gap = 0.3;
   m.min_range = 0.5;
   const std::vector<Segment> world = Mine();
-  const SegmentGrid grid(world);
+  const StaticSegmentIndex grid(world);
   const LadarSimulator sim(m, 5);
   int mixed = 0, edges = 0;
   for (const Station& st : MineSurveyStations(MineOptions(), 42)) {
@@ -239,7 +241,7 @@ TEST(LadarSimulatorTest, MixedPixelsOnlyAtOcclusionEdges) {
 
 TEST(LadarSimulatorTest, DeterministicPerSeedAndScanId) {
   const std::vector<Segment> world = Mine();
-  const SegmentGrid grid(world);
+  const StaticSegmentIndex grid(world);
   const Pose2 pose = MineSurveyStations(MineOptions(), 42)[3].pose;
   const LadarSimulator a(LadarModel::Cyclone(1024), 7), b(LadarModel::Cyclone(1024), 7), c(LadarModel::Cyclone(1024), 8);
   const LadarScan a2 = a.Simulate(grid, pose, Pose2(), 10, 2);
@@ -253,6 +255,67 @@ TEST(LadarSimulatorTest, DeterministicPerSeedAndScanId) {
   EXPECT_EQ(a1.sensor_id, "cyclone");
   EXPECT_EQ(ValidateScan(a1), "");
   EXPECT_NEAR(a1.scan_duration, 1023.0 / 1024.0 / 5.0, 1e-12);
+}
+
+
+// The ladar's ray casting (common/segment_index.h) on the synthetic mine must give exactly
+// what brute force (common/geometry.h CastRay) gives (the index's own tests, on worlds built
+// inline, are in common/segment_index_test.cc).
+::testing::AssertionResult SameHit(const StaticSegmentIndex& grid, const Eigen::Vector2d& o, double bearing,
+                                   double max_range) {
+  const auto brute = CastRay(o, bearing, grid.segments(), max_range);
+  const auto fast = grid.CastRay(o, bearing, max_range);
+  if (brute.has_value() != fast.has_value())
+    return ::testing::AssertionFailure() << "hit mismatch at (" << o.transpose() << ") bearing " << bearing
+                                         << ": brute " << brute.has_value() << " grid " << fast.has_value();
+  if (brute && (brute->range != fast->range || brute->segment != fast->segment))
+    return ::testing::AssertionFailure() << "at (" << o.transpose() << ") bearing " << bearing << ": brute "
+                                         << brute->range << " #" << brute->segment << ", grid " << fast->range
+                                         << " #" << fast->segment;
+  return ::testing::AssertionSuccess();
+}
+
+TEST(LadarRayCastingTest, RandomRaysInSyntheticMineMatchBruteForce) {
+  MineOptions o;
+  o.pillar_rows = 3;
+  o.pillar_cols = 4;
+  const std::vector<Segment> world = GenerateRoomAndPillarMine(o);
+  const Eigen::Vector2d size = MinePanelSize(o);
+  for (double cell : {0.0, 0.37, 1.0, 5.0}) {
+    const StaticSegmentIndex grid(world, cell);
+    std::mt19937_64 rng(42);
+    std::uniform_real_distribution<double> ux(-10.0, size.x() + 10.0), uy(-10.0, size.y() + 10.0);
+    std::uniform_real_distribution<double> ub(-kPi, kPi), ur(0.0, 80.0);
+    int hits = 0;
+    for (int i = 0; i < 20000; ++i) {
+      const Eigen::Vector2d origin(ux(rng), uy(rng));
+      const double range = i % 3 == 0 ? ur(rng) : 200.0;
+      ASSERT_TRUE(SameHit(grid, origin, ub(rng), range)) << "cell " << cell;
+      hits += CastRay(origin, 0.3, world, 200.0).has_value();
+    }
+    EXPECT_GT(hits, 1000);
+  }
+}
+
+TEST(LadarRayCastingTest, DegenerateRaysMatchBruteForce) {
+  MineOptions o;
+  const std::vector<Segment> world = GenerateRoomAndPillarMine(o);
+  const StaticSegmentIndex grid(world, 1.0);
+  // Rays from every 7th vertex towards other vertices (through shared endpoints), and
+  // axis-aligned rays from points on cell boundaries.
+  for (size_t i = 0; i < world.size(); i += 7) {
+    for (size_t j = 3; j < world.size(); j += 29) {
+      const Eigen::Vector2d from = world[i].a, to = world[j].b;
+      if ((to - from).norm() < 1e-9) continue;
+      const double bearing = std::atan2(to.y() - from.y(), to.x() - from.x());
+      ASSERT_TRUE(SameHit(grid, from, bearing, 100.0));
+      ASSERT_TRUE(SameHit(grid, from + Eigen::Vector2d(0.5, 0.5), bearing, 100.0));
+    }
+  }
+  for (double x = -2.0; x < 70.0; x += 1.0)
+    for (double y = -2.0; y < 50.0; y += 1.0)
+      for (double b : {0.0, kPi / 2, kPi, -kPi / 2, kPi / 4, -3 * kPi / 4})
+        ASSERT_TRUE(SameHit(grid, Eigen::Vector2d(x, y), b, 100.0));
 }
 
 }  // namespace

@@ -3,8 +3,8 @@
 #include <cmath>
 #include <memory>
 
+#include "common/segment_index.h"
 #include "sensor_driver/ladar_simulator.h"
-#include "sensor_driver/segment_grid.h"
 
 namespace minenav {
 
@@ -65,12 +65,12 @@ void RunSurvey(const std::vector<std::vector<Segment>>& worlds, const std::vecto
   }
 
   // One ray-casting index per world, built on first use.
-  std::vector<std::unique_ptr<SegmentGrid>> grids(worlds.size());
+  std::vector<std::unique_ptr<StaticSegmentIndex>> grids(worlds.size());
   const LadarSimulator simulator(options.sensor, options.seed);
   const auto interval_us = static_cast<int64_t>(std::llround(options.station_interval * 1e6));
   for (size_t k = 0; k < stations.size(); ++k) {
     const auto w = static_cast<size_t>(stations[k].world);
-    if (!grids[w]) grids[w] = std::make_unique<SegmentGrid>(worlds[w]);
+    if (!grids[w]) grids[w] = std::make_unique<StaticSegmentIndex>(worlds[w]);
     SurveyRecord rec;
     rec.index = static_cast<int>(k);
     rec.utime = options.start_utime + static_cast<int64_t>(k) * interval_us;
