@@ -21,7 +21,7 @@
 #include "bench/bench_util.h"
 #include "common/config.h"
 #include "common/file_io.h"
-#include "mapper/changing_world_judge.h"
+#include "evaluation/changing_world_judge.h"
 #include "sensor_driver/ladar_simulator.h"
 
 namespace {

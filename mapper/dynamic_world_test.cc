@@ -10,7 +10,7 @@
 
 #include <cstdio>
 
-#include "mapper/changing_world_judge.h"
+#include "evaluation/changing_world_judge.h"
 #include "mapper/test_world.h"
 
 namespace minenav::mapper {

@@ -3,7 +3,7 @@
 // (tests/bus/private_net.sh): vehicle_sim + ladar_driver + contour_mapper (live), the
 // vehicle standing in room A facing the double door of sim/changing_world.h's doors_open
 // scenario. The doors open while the fleet runs (vehicle_sim --world-change-at). The
-// final CONTOUR_MAP is judged with mapper/changing_world_judge.h and map_evaluation.h:
+// final CONTOUR_MAP is judged with evaluation/changing_world_judge.h and map_evaluation.h:
 //   - before the change the map held the closed doors (the test has teeth);
 //   - after it, the door leaves seen through are gone (wall length wrongly kept), the walls
 //     seen before and still there are kept (wall length wrongly removed), the walls of the
@@ -23,7 +23,7 @@
 #include "common/node/contour_map_conversions.h"
 #include "common/node/conversions.h"
 #include "common/node/lcm_bus.h"
-#include "mapper/changing_world_judge.h"
+#include "evaluation/changing_world_judge.h"
 #include "mapper/map_evaluation.h"
 #include "minenav/contour_map_t.hpp"
 #include "minenav/ladar_scan_t.hpp"
