@@ -96,4 +96,11 @@ double PointToPolylineDistance(const Eigen::Vector2d& p, const std::vector<Eigen
   return best;
 }
 
+bool SameSegments(const std::vector<Segment>& a, const std::vector<Segment>& b) {
+  if (a.size() != b.size()) return false;
+  for (size_t i = 0; i < a.size(); ++i)
+    if (a[i].a != b[i].a || a[i].b != b[i].b) return false;
+  return true;
+}
+
 }  // namespace minenav

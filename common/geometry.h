@@ -62,4 +62,8 @@ double PolylineLength(const std::vector<Eigen::Vector2d>& points, bool closed);
 double PointToPolylineDistance(const Eigen::Vector2d& p, const std::vector<Eigen::Vector2d>& points,
                                bool closed);
 
+// True when both lists hold the same segments, end for end, in the same order (a map
+// message that repeats the map in force needs no rebuild).
+bool SameSegments(const std::vector<Segment>& a, const std::vector<Segment>& b);
+
 }  // namespace minenav

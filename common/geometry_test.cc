@@ -89,4 +89,12 @@ TEST(GeometryTest, Polyline) {
 }
 
 }  // namespace
+TEST(GeometryTest, SameSegmentsComparesEndsInOrder) {
+  const std::vector<Segment> a = {Segment(0, 0, 1, 0), Segment(1, 0, 1, 1)};
+  EXPECT_TRUE(SameSegments(a, a));
+  EXPECT_FALSE(SameSegments(a, {a[1], a[0]}));
+  EXPECT_FALSE(SameSegments(a, {a[0]}));
+  EXPECT_FALSE(SameSegments(a, {a[0], Segment(1, 0, 1, 1.5)}));
+}
+
 }  // namespace minenav

@@ -447,15 +447,6 @@ std::string WriteOutputs(const ProcessOptions& p, const mapper::MappingSession& 
 
 // The value of `flag` on the command line ("--flag VALUE" or "--flag=VALUE"; the last one
 // wins), `fallback` when absent.
-std::string FlagFromCommandLine(int argc, char** argv, const std::string& flag, std::string fallback) {
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    if (arg.rfind(flag + "=", 0) == 0) fallback = arg.substr(flag.size() + 1);
-    else if (arg == flag && i + 1 < argc) fallback = argv[i + 1];
-  }
-  return fallback;
-}
-
 // Issue 11, item 13: an output naming an input (--map-out equal to --log overwrote the
 // log) is refused before anything is read. The checkpoint is read and written by design,
 // so it is an input of the other outputs only; a .partial name counts as its output too.
@@ -499,7 +490,7 @@ int Main(int argc, char** argv) {
   if (const std::string why = mapper::ValidateOptions(so); !why.empty()) throw UsageError(why);
   if (schema.WasSet("checkpoint_every") && p.checkpoint.empty())
     throw UsageError("--checkpoint-every needs --checkpoint FILE");
-  CheckOutputsAreNotInputs(p, runtime.options(), FlagFromCommandLine(argc, argv, "--config", ""));
+  CheckOutputsAreNotInputs(p, runtime.options(), PeekOption(argc, argv, "config").value_or(""));
   // Long computations (refinement, loop closure) stop within one step of a stop signal:
   // the live worker then finishes its scan quickly, and a batch run is cut short at once.
   so.mapper.refinement.should_stop = [] { return NodeRuntime::StopSignalled(); };

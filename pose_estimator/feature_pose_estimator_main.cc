@@ -62,13 +62,6 @@ void Declare(ConfigSchema& s, ProcessOptions& p, FeaturePoseEstimatorOptions& e)
       "Exit codes: 0 ok, 2 bad flag or input file, 3 runtime failure.\n");
 }
 
-bool SameSegments(const std::vector<Segment>& a, const std::vector<Segment>& b) {
-  if (a.size() != b.size()) return false;
-  for (size_t i = 0; i < a.size(); ++i)
-    if (a[i].a != b[i].a || a[i].b != b[i].b) return false;
-  return true;
-}
-
 int Main(int argc, char** argv) {
   ConfigSchema schema("feature_pose_estimator",
                       "Feature-based pose estimator (thesis ch. 2): scans + odometry + line map -> POSE_FPE.");

@@ -138,13 +138,6 @@ LadarModel BuildModel(const LadarDriverOptions& o) {
   return m;
 }
 
-bool SameSegments(const std::vector<Segment>& a, const std::vector<Segment>& b) {
-  if (a.size() != b.size()) return false;
-  for (size_t i = 0; i < a.size(); ++i)
-    if (a[i].a != b[i].a || a[i].b != b[i].b) return false;
-  return true;
-}
-
 int RunSimulation(NodeRuntime& runtime, const LadarDriverOptions& o, const LadarModel& model,
                   const Pose2& sensor_offset) {
   Bus& bus = runtime.bus();
