@@ -15,8 +15,8 @@
 
 #include "bench/bench_util.h"
 #include "common/angle.h"
-#include "pose_estimator/feature_pose_estimator.h"
-#include "pose_estimator/iconic_estimator.h"
+#include "pose_estimator/feature/feature_pose_estimator.h"
+#include "pose_estimator/iconic/iconic_estimator.h"
 #include "sensor_driver/ladar_simulator.h"
 #include "sim/mine_generator.h"
 #include "sim/mockup_generator.h"

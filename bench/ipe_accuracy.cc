@@ -13,8 +13,8 @@
 
 #include "bench/bench_util.h"
 #include "common/angle.h"
-#include "pose_estimator/iconic_matcher.h"
-#include "pose_estimator/segment_map.h"
+#include "pose_estimator/iconic/iconic_matcher.h"
+#include "pose_estimator/iconic/segment_map.h"
 #include "sensor_driver/ladar_simulator.h"
 #include "sim/mine_generator.h"
 #include "sim/mockup_generator.h"

@@ -7,7 +7,7 @@
 
 #include "bench/bench_util.h"
 #include "common/angle.h"
-#include "pose_estimator/iconic_estimator.h"
+#include "pose_estimator/iconic/iconic_estimator.h"
 #include "sensor_driver/ladar_simulator.h"
 #include "sim/mine_generator.h"
 

@@ -35,7 +35,7 @@
 #include "render/svg_render.h"
 #include "mapper/carmen_session_options.h"
 #include "mapper/mapping_session.h"
-#include "pose_estimator/iconic_estimator.h"
+#include "pose_estimator/iconic/iconic_estimator.h"
 
 #ifndef MINENAV_DATASETS_DIR
 #define MINENAV_DATASETS_DIR "../shared/datasets"

@@ -8,8 +8,8 @@
 #include <unordered_map>
 
 #include "mapper/correspondence.h"
-#include "pose_estimator/iconic_matcher.h"
-#include "pose_estimator/lookup_table_correspondence.h"
+#include "pose_estimator/iconic/iconic_matcher.h"
+#include "pose_estimator/iconic/lookup_table_correspondence.h"
 
 namespace minenav::mapper {
 

@@ -1,0 +1,374 @@
+#include "pose_estimator/feature/feature_extraction.h"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+#include "pose_estimator/feature/incremental_line_fitter.h"
+
+namespace minenav {
+namespace {
+
+struct Piece {
+  std::vector<ScanPoint> points;
+  bool closed = false;           // a full-circle scan without a single break
+  bool occluding_start = false;  // the start hides something farther (or open space)
+  bool occluding_end = false;
+};
+
+// A robust line fit over a span of points, leaving out points near the corners that
+// bound it.
+struct SpanLine {
+  LineFit fit;
+  int inliers = 0;
+  ScanPoint first, last;  // first and last inlier in scan order
+};
+
+// `fit_out` receives the last fit even when the span is rejected (for splitting).
+std::optional<SpanLine> FitSpan(const std::vector<ScanPoint>& span,
+                                const std::vector<Eigen::Vector2d>& exclude,
+                                const ExtractionOptions& o, LineFit* fit_out) {
+  std::vector<size_t> idx;
+  for (size_t i = 0; i < span.size(); ++i) {
+    bool near = false;
+    for (const Eigen::Vector2d& e : exclude) near = near || (span[i].point - e).norm() < o.corner_gap;
+    if (!near) idx.push_back(i);
+  }
+  if (static_cast<int>(idx.size()) < o.min_line_points) return std::nullopt;
+  const size_t total = idx.size();
+  SpanLine s;
+  // Start from the line through two points of the span that has the most points within
+  // 2 sigma (deterministic pairs a third of the span apart), so a column jutting from
+  // the wall or clutter against it cannot tilt the first fit; then refine by refitting
+  // to the points within outlier_factor sigma.
+  std::vector<size_t> keep;
+  {
+    const size_t m = idx.size();
+    const size_t gap = std::max<size_t>(1, m / 3);
+    const size_t tries = std::min<size_t>(24, m - gap);
+    size_t best = 0;
+    for (size_t t = 0; t < tries; ++t) {
+      const size_t j = t * (m - gap) / tries;
+      const Eigen::Vector2d a = span[idx[j]].point, b = span[idx[j + gap]].point;
+      if ((b - a).norm() < 1e-9) continue;
+      const Eigen::Vector2d d = (b - a).normalized();
+      const Eigen::Vector2d n(-d.y(), d.x());
+      std::vector<size_t> in;
+      for (size_t i : idx) {
+        if (std::abs(n.dot(span[i].point - a)) <= 2.0 * o.noise_sigma) in.push_back(i);
+      }
+      if (in.size() > best) {
+        best = in.size();
+        keep = std::move(in);
+      }
+    }
+    if (static_cast<int>(keep.size()) < o.min_line_points) keep = idx;
+  }
+  for (int iter = 0; iter < 6; ++iter) {
+    IncrementalLineFitter fitter(span[keep.front()].point, o.noise_sigma);
+    for (size_t i : keep) fitter.Add(span[i].point);
+    s.fit = fitter.Fit();
+    *fit_out = s.fit;
+    if (!s.fit.valid) return std::nullopt;
+    const Eigen::Vector2d n(-s.fit.direction.y(), s.fit.direction.x());
+    std::vector<size_t> next;
+    for (size_t i : idx) {
+      if (std::abs(n.dot(span[i].point - s.fit.centroid)) <= o.outlier_factor * o.noise_sigma) {
+        next.push_back(i);
+      }
+    }
+    if (static_cast<int>(next.size()) < o.min_line_points) return std::nullopt;
+    if (next == keep) break;
+    keep = std::move(next);
+  }
+  s.inliers = static_cast<int>(keep.size());
+  s.first = span[keep.front()];
+  s.last = span[keep.back()];
+  if (s.fit.rms > o.max_line_rms) return std::nullopt;
+  if (static_cast<double>(s.inliers) < o.min_inlier_fraction * static_cast<double>(total)) {
+    return std::nullopt;
+  }
+  return s;
+}
+
+// Lines of a span in scan order. A run of consecutive points off the line inside the span
+// (a column jutting from the wall, clutter against it) splits it, and each side is fit on
+// its own, so the run neither tilts the line nor hides the wall on either side.
+std::vector<SpanLine> FitSpanLines(const std::vector<ScanPoint>& span,
+                                   const std::vector<Eigen::Vector2d>& exclude,
+                                   const ExtractionOptions& o, int depth = 0) {
+  LineFit fit;
+  const std::optional<SpanLine> line = FitSpan(span, exclude, o, &fit);
+  if (depth < 4 && fit.valid) {
+    const Eigen::Vector2d n(-fit.direction.y(), fit.direction.x());
+    const double limit = o.outlier_factor * o.noise_sigma;
+    int best_start = -1, best_len = 0, start = -1, len = 0;
+    for (int i = 0; i < static_cast<int>(span.size()); ++i) {
+      if (std::abs(n.dot(span[static_cast<size_t>(i)].point - fit.centroid)) > limit) {
+        if (len == 0) start = i;
+        ++len;
+        if (len > best_len) {
+          best_len = len;
+          best_start = start;
+        }
+      } else {
+        len = 0;
+      }
+    }
+    const int after = best_start + best_len;
+    if (best_len >= o.split_run_points && best_start >= o.min_line_points &&
+        static_cast<int>(span.size()) - after >= o.min_line_points) {
+      const std::vector<ScanPoint> left(span.begin(), span.begin() + best_start);
+      const std::vector<ScanPoint> right(span.begin() + after, span.end());
+      std::vector<SpanLine> out = FitSpanLines(left, exclude, o, depth + 1);
+      std::vector<SpanLine> more = FitSpanLines(right, exclude, o, depth + 1);
+      out.insert(out.end(), more.begin(), more.end());
+      return out;
+    }
+  }
+  if (line) return {*line};
+  return {};
+}
+
+Eigen::Vector2d Project(const LineFit& f, const Eigen::Vector2d& p) {
+  return f.centroid + f.direction * f.direction.dot(p - f.centroid);
+}
+
+// Where the ray from the origin at `bearing` meets the fitted line.
+Eigen::Vector2d RayOnLine(const LineFit& f, double bearing) {
+  const Eigen::Vector2d d(std::cos(bearing), std::sin(bearing));
+  const Eigen::Vector2d n(-f.direction.y(), f.direction.x());
+  const double den = n.dot(d);
+  if (std::abs(den) < 1e-6) return Project(f, f.centroid);
+  return d * (n.dot(f.centroid) / den);
+}
+
+bool IntersectFits(const LineFit& a, const LineFit& b, Eigen::Vector2d* out) {
+  const Eigen::Vector2d d1 = a.direction, d2 = b.direction;
+  const double den = d1.x() * d2.y() - d1.y() * d2.x();
+  if (std::abs(den) < std::sin(DegToRad(20.0))) return false;
+  const Eigen::Vector2d w = b.centroid - a.centroid;
+  *out = a.centroid + d1 * ((w.x() * d2.y() - w.y() * d2.x()) / den);
+  return true;
+}
+
+Eigen::Vector2d AwayFrom(const LineFit& f, const Eigen::Vector2d& v) {
+  return f.direction.dot(f.centroid - v) >= 0 ? f.direction : Eigen::Vector2d(-f.direction);
+}
+
+std::vector<Piece> BreakScan(const LadarScan& scan, const std::vector<ScanPoint>& pts,
+                             const ExtractionOptions& o) {
+  std::vector<Piece> pieces;
+  const int n = static_cast<int>(pts.size());
+  if (n == 0) return pieces;
+  const double step = std::abs(scan.angle_step);
+  const int total = static_cast<int>(scan.ranges.size());
+  const bool full_circle = step * static_cast<double>(total) >= 2.0 * kPi - 1.5 * step;
+  // Readings are neighbours if no more than one reading is missing between them and they
+  // are close in space.
+  auto linked = [&](const ScanPoint& a, const ScanPoint& b) {
+    int gap = b.index - a.index;
+    if (gap < 0) gap += total;
+    if (gap > 2) return false;
+    const double limit = o.break_distance + o.break_range_factor * std::min(a.range, b.range);
+    return (a.point - b.point).norm() <= limit;
+  };
+  // Where does a piece start? At each break. On a full circle, start after a break so the
+  // piece that straddles index 0 stays whole.
+  int first = 0;
+  if (full_circle) {
+    for (int i = 0; i < n; ++i) {
+      if (!linked(pts[static_cast<size_t>((i + n - 1) % n)], pts[static_cast<size_t>(i)])) {
+        first = i;
+        break;
+      }
+    }
+  }
+  bool any_break = !full_circle;
+  for (int i = 0; i < n && !any_break; ++i) {
+    any_break = !linked(pts[static_cast<size_t>((i + n - 1) % n)], pts[static_cast<size_t>(i)]);
+  }
+  Piece cur;
+  cur.closed = !any_break;
+  for (int k = 0; k < n; ++k) {
+    const ScanPoint& p = pts[static_cast<size_t>((first + k) % n)];
+    if (!cur.points.empty() && !linked(cur.points.back(), p)) {
+      pieces.push_back(std::move(cur));
+      cur = Piece{};
+    }
+    cur.points.push_back(p);
+  }
+  pieces.push_back(std::move(cur));
+
+  // An end occludes if the reading just beyond it is missing (nothing within range) or
+  // farther away; a scan edge of a partial scan occludes nothing we can know of.
+  auto neighbour_range = [&](int index, int dir) -> std::optional<double> {
+    int j = index + dir;
+    if (full_circle) {
+      j = (j + total) % total;
+    } else if (j < 0 || j >= total) {
+      return std::nullopt;
+    }
+    const auto r = static_cast<double>(scan.ranges[static_cast<size_t>(j)]);
+    return scan.IsValid(static_cast<size_t>(j)) ? r : std::numeric_limits<double>::infinity();
+  };
+  for (Piece& pc : pieces) {
+    const ScanPoint& a = pc.points.front();
+    const ScanPoint& b = pc.points.back();
+    const auto ra = neighbour_range(a.index, -1);
+    const auto rb = neighbour_range(b.index, +1);
+    if (pc.closed) continue;
+    pc.occluding_start = ra && *ra > a.range + o.break_distance;
+    pc.occluding_end = rb && *rb > b.range + o.break_distance;
+  }
+  std::erase_if(pieces, [&](const Piece& pc) {
+    return static_cast<int>(pc.points.size()) < o.min_piece_points;
+  });
+  return pieces;
+}
+
+}  // namespace
+
+ExtractedFeatures ExtractFeatures(const LadarScan& scan, const ExtractionOptions& o) {
+  ExtractedFeatures out;
+  const std::vector<ScanPoint> pts = ScanPointsInSensorFrame(scan);
+  out.num_points = static_cast<int>(pts.size());
+  const std::vector<Piece> pieces = BreakScan(scan, pts, o);
+  out.num_pieces = static_cast<int>(pieces.size());
+  const double half_step = 0.5 * scan.angle_step;
+
+  for (const Piece& pc : pieces) {
+    const int m = static_cast<int>(pc.points.size());
+    // A closed loop is padded with its own ends so the operator sees across the seam.
+    int pad = 0;
+    if (pc.closed) {
+      while (pad + 1 < m &&
+             (pc.points[static_cast<size_t>(pad)].point - pc.points[0].point).norm() < 1.5 * o.corner.arm_length) {
+        ++pad;
+      }
+      pad += 2;
+      pad = std::min(pad, m - 1);
+    }
+    std::vector<Eigen::Vector2d> xy;
+    for (int i = -pad; i < m + pad; ++i) {
+      xy.push_back(pc.points[static_cast<size_t>((i % m + m) % m)].point);
+    }
+    std::vector<CornerCandidate> corners;
+    for (CornerCandidate c : ApplyCornerOperator(xy, o.corner)) {
+      c.index -= pad;
+      if (c.index < 0 || c.index >= m) continue;
+      if (!corners.empty() && corners.back().index == c.index) continue;
+      corners.push_back(c);
+    }
+    const int nc = static_cast<int>(corners.size());
+
+    // Spans of points between breakpoints (piece ends, corners). Open piece: nc + 1 spans,
+    // corner k between spans k and k + 1. Closed loop: nc spans (one if no corner), span k
+    // from corner k to corner k + 1, corner k between spans k - 1 and k.
+    struct Span {
+      std::vector<ScanPoint> points;
+      int corner_before = -1, corner_after = -1;
+    };
+    std::vector<Span> spans;
+    auto take = [&](int from, int to) {  // inclusive, cyclic for closed loops
+      std::vector<ScanPoint> v;
+      for (int i = from;; i = (i + 1) % m) {
+        v.push_back(pc.points[static_cast<size_t>(i)]);
+        if (i == to) break;
+      }
+      return v;
+    };
+    if (!pc.closed) {
+      for (int k = 0; k <= nc; ++k) {
+        const int i0 = k == 0 ? 0 : corners[static_cast<size_t>(k - 1)].index;
+        const int i1 = k == nc ? m - 1 : corners[static_cast<size_t>(k)].index;
+        spans.push_back({take(i0, i1), k - 1, k < nc ? k : -1});
+      }
+    } else if (nc == 0) {
+      spans.push_back({pc.points, -1, -1});
+    } else {
+      for (int k = 0; k < nc; ++k) {
+        spans.push_back({take(corners[static_cast<size_t>(k)].index,
+                              corners[static_cast<size_t>((k + 1) % nc)].index),
+                         k, (k + 1) % nc});
+      }
+    }
+    std::vector<std::vector<SpanLine>> lines(spans.size());
+    for (size_t k = 0; k < spans.size(); ++k) {
+      std::vector<Eigen::Vector2d> exclude;
+      if (spans[k].corner_before >= 0) exclude.push_back(corners[static_cast<size_t>(spans[k].corner_before)].vertex);
+      if (spans[k].corner_after >= 0) exclude.push_back(corners[static_cast<size_t>(spans[k].corner_after)].vertex);
+      lines[k] = FitSpanLines(spans[k].points, exclude, o);
+    }
+    auto span_before = [&](int k) { return pc.closed ? (k + nc - 1) % nc : k; };
+    auto span_after = [&](int k) { return pc.closed ? k : k + 1; };
+
+    // Corners: at the intersection of the neighbouring lines when both exist.
+    std::vector<Eigen::Vector2d> vertex(static_cast<size_t>(nc));
+    for (int k = 0; k < nc; ++k) {
+      const CornerCandidate& c = corners[static_cast<size_t>(k)];
+      Eigen::Vector2d v = c.vertex, arm_before = c.arm_before, arm_after = c.arm_after;
+      int points = c.num_points;
+      double rms = c.fit_rms;
+      const auto& lbs = lines[static_cast<size_t>(span_before(k))];
+      const auto& las = lines[static_cast<size_t>(span_after(k))];
+      const SpanLine* lb = lbs.empty() ? nullptr : &lbs.back();
+      const SpanLine* la = las.empty() ? nullptr : &las.front();
+      Eigen::Vector2d w;
+      if (lb && la && IntersectFits(lb->fit, la->fit, &w) && (w - c.vertex).norm() < o.corner.arm_length) {
+        v = w;
+        arm_before = AwayFrom(lb->fit, v);
+        arm_after = AwayFrom(la->fit, v);
+        points = lb->inliers + la->inliers;
+        rms = std::max(lb->fit.rms, la->fit.rms);
+      }
+      vertex[static_cast<size_t>(k)] = v;
+      Feature f = MakeCorner(v, arm_before, arm_after, false);
+      f.num_points = points;
+      f.fit_rms = rms;
+      out.features.push_back(f);
+    }
+
+    // Lines, from the corner (or the projected first / last inlier) to the next.
+    for (size_t k = 0; k < spans.size(); ++k) {
+      const size_t nl = lines[k].size();
+      for (size_t j = 0; j < nl; ++j) {
+        const SpanLine& s = lines[k][j];
+        const int cb = j == 0 ? spans[k].corner_before : -1;
+        const int ca = j + 1 == nl ? spans[k].corner_after : -1;
+        const Eigen::Vector2d a = cb >= 0 ? Project(s.fit, vertex[static_cast<size_t>(cb)]) : Project(s.fit, s.first.point);
+        const Eigen::Vector2d b = ca >= 0 ? Project(s.fit, vertex[static_cast<size_t>(ca)]) : Project(s.fit, s.last.point);
+        if ((b - a).norm() < o.min_line_length) continue;
+        const bool ccw = a.x() * b.y() - a.y() * b.x() >= 0.0;  // as seen from the sensor
+        Feature f = MakeLine(ccw ? a : b, ccw ? b : a);
+        f.num_points = s.inliers;
+        f.fit_rms = s.fit.rms;
+        out.features.push_back(f);
+
+        // Occlusion corners at occluding piece ends covered by this line. The surface ends
+        // somewhere between the last ray that saw it and the next: take the middle.
+        if (!o.occlusion_corners || pc.closed) continue;
+        for (int side = 0; side < 2; ++side) {
+          const bool occluding = side == 0 ? (k == 0 && j == 0 && pc.occluding_start)
+                                           : (k + 1 == spans.size() && j + 1 == nl && pc.occluding_end);
+          if (!occluding) continue;
+          const ScanPoint& last = side == 0 ? s.first : s.last;
+          const double outward = side == 0 ? -half_step : half_step;
+          const Eigen::Vector2d v = RayOnLine(s.fit, last.bearing + outward);
+          const Eigen::Vector2d seen = RayOnLine(s.fit, last.bearing);
+          const Eigen::Vector2d inward = ((side == 0 ? b : a) - v).normalized();
+          Feature c = MakeCorner(v, inward, v.normalized(), true);
+          c.num_points = s.inliers;
+          c.fit_rms = s.fit.rms;
+          const double span_len = 2.0 * (v - seen).norm();
+          c.position_variance = span_len * span_len / 12.0;
+          out.features.push_back(c);
+        }
+      }
+    }
+  }
+  SortByAzimuth(&out.features);
+  return out;
+}
+
+}  // namespace minenav

@@ -1,0 +1,103 @@
+#include "pose_estimator/iconic/scan_polylines.h"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+
+namespace minenav {
+
+std::vector<std::vector<Eigen::Vector2d>> SplitIntoPartialScans(const std::vector<Eigen::Vector2d>& points,
+                                                               const PartialScanOptions& options) {
+  std::vector<std::vector<Eigen::Vector2d>> out;
+  std::vector<Eigen::Vector2d> current;
+  for (const Eigen::Vector2d& p : points) {
+    if (!std::isfinite(p.x()) || !std::isfinite(p.y())) continue;
+    if (!current.empty() && (p - current.back()).norm() > options.break_distance) {
+      out.push_back(std::move(current));
+      current.clear();
+    }
+    current.push_back(p);
+  }
+  if (!current.empty()) out.push_back(std::move(current));
+  // Close the ring: a full scan's last run continues into its first.
+  if (out.size() >= 2 && (out.back().back() - out.front().front()).norm() <= options.break_distance) {
+    out.back().insert(out.back().end(), out.front().begin(), out.front().end());
+    out.front() = std::move(out.back());
+    out.pop_back();
+  }
+  std::erase_if(out, [&](const auto& run) { return static_cast<int>(run.size()) < options.min_points; });
+  return out;
+}
+
+std::vector<Segment> PartialScansToSegments(const std::vector<std::vector<Eigen::Vector2d>>& partial_scans) {
+  std::vector<Segment> out;
+  for (const auto& run : partial_scans) {
+    for (size_t i = 1; i < run.size(); ++i) {
+      if ((run[i] - run[i - 1]).squaredNorm() > 0.0) out.emplace_back(run[i - 1], run[i]);
+    }
+  }
+  return out;
+}
+
+namespace {
+struct FitLine {
+  Eigen::Vector2d centroid;
+  Eigen::Vector2d direction;  // unit
+  Eigen::Vector2d Project(const Eigen::Vector2d& p) const {
+    return centroid + direction * direction.dot(p - centroid);
+  }
+};
+
+FitLine FitTotalLeastSquares(const std::vector<Eigen::Vector2d>& run, size_t begin, size_t end) {
+  FitLine line;
+  line.centroid.setZero();
+  for (size_t i = begin; i <= end; ++i) line.centroid += run[i];
+  line.centroid /= static_cast<double>(end - begin + 1);
+  Eigen::Matrix2d scatter = Eigen::Matrix2d::Zero();
+  for (size_t i = begin; i <= end; ++i) {
+    const Eigen::Vector2d d = run[i] - line.centroid;
+    scatter += d * d.transpose();
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(scatter);
+  line.direction = eig.eigenvectors().col(1);
+  if (!(line.direction.squaredNorm() > 0.5)) line.direction = (run[end] - run[begin]).normalized();
+  return line;
+}
+}  // namespace
+
+std::vector<Segment> FitPolylines(const std::vector<std::vector<Eigen::Vector2d>>& partial_scans,
+                                  const PolylineFitOptions& options) {
+  std::vector<Segment> out;
+  for (const auto& run : partial_scans) {
+    if (run.size() < 2) continue;
+    // Cut points: where the straight distance from the last cut reaches segment_length
+    // (arc length would count the noise zigzag: 5 cm noise at 2 cm spacing triples it).
+    std::vector<size_t> cuts = {0};
+    for (size_t i = 1; i + 1 < run.size(); ++i) {
+      if ((run[i] - run[cuts.back()]).norm() >= options.segment_length) cuts.push_back(i);
+    }
+    cuts.push_back(run.size() - 1);
+    // A last piece much shorter than the rest joins its predecessor.
+    if (cuts.size() > 2 && (run.back() - run[cuts[cuts.size() - 2]]).norm() < 0.5 * options.segment_length)
+      cuts.erase(cuts.end() - 2);
+    std::vector<FitLine> lines;
+    for (size_t k = 0; k + 1 < cuts.size(); ++k) lines.push_back(FitTotalLeastSquares(run, cuts[k], cuts[k + 1]));
+    std::vector<Eigen::Vector2d> vertices;
+    vertices.push_back(lines.front().Project(run[cuts.front()]));
+    for (size_t k = 1; k + 1 < cuts.size(); ++k)
+      vertices.push_back(0.5 * (lines[k - 1].Project(run[cuts[k]]) + lines[k].Project(run[cuts[k]])));
+    vertices.push_back(lines.back().Project(run[cuts.back()]));
+    for (size_t k = 1; k < vertices.size(); ++k)
+      if ((vertices[k] - vertices[k - 1]).squaredNorm() > 0.0) out.emplace_back(vertices[k - 1], vertices[k]);
+  }
+  return out;
+}
+
+std::vector<Segment> TransformSegments(const Pose2& pose, const std::vector<Segment>& segments) {
+  std::vector<Segment> out;
+  out.reserve(segments.size());
+  for (const Segment& s : segments) out.emplace_back(pose * s.a, pose * s.b);
+  return out;
+}
+
+}  // namespace minenav
