@@ -7,6 +7,7 @@
 #include <fstream>
 #include <iomanip>
 #include <sstream>
+#include <utility>
 
 #include "common/angle.h"
 
@@ -84,14 +85,29 @@ ConfigSchema::ConfigSchema(std::string program, std::string summary)
 
 void ConfigSchema::Add(Entry entry) {
   if (Find(entry.key)) throw std::logic_error("option '" + entry.key + "' declared twice");
+  if (entry.key.empty() || entry.key.front() == '.' || entry.key.back() == '.' ||
+      entry.key.find("..") != std::string::npos)
+    throw std::logic_error("option key '" + entry.key + "' is not a dotted name");
   entry.default_text = entry.get();
   entries_.push_back(std::move(entry));
 }
 
 ConfigSchema::Entry* ConfigSchema::Find(const std::string& key) {
-  for (auto& e : entries_)
-    if (e.key == key) return &e;
+  return const_cast<Entry*>(std::as_const(*this).Find(key));
+}
+
+const ConfigSchema::Entry* ConfigSchema::Find(const std::string& key) const {
+  const auto alias = aliases_.find(key);
+  const std::string& name = alias == aliases_.end() ? key : alias->second;
+  for (const auto& e : entries_)
+    if (e.key == name) return &e;
   return nullptr;
+}
+
+void ConfigSchema::AddAlias(const std::string& alias, const std::string& key) {
+  if (!Find(key)) throw std::logic_error("alias '" + alias + "' names no option '" + key + "'");
+  if (Find(alias)) throw std::logic_error("alias '" + alias + "' is already an option");
+  aliases_[alias] = key;
 }
 
 void ConfigSchema::AddDouble(const std::string& key, double* value, const std::string& unit,
@@ -224,11 +240,19 @@ void ConfigSchema::Set(const std::string& key, const std::string& text, const st
 void ConfigSchema::LoadFile(const std::string& path) {
   std::ifstream in(path);
   if (!in) throw UsageError(path + ": cannot open config file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw UsageError(path + ": cannot read config file");
+  LoadText(text.str(), path);
+}
+
+void ConfigSchema::LoadText(const std::string& text, const std::string& source) {
+  std::istringstream in(text);
   std::string line;
   int line_no = 0;
   while (std::getline(in, line)) {
     ++line_no;
-    const std::string where = path + ":" + std::to_string(line_no);
+    const std::string where = source + ":" + std::to_string(line_no);
     const auto hash = line.find('#');
     const std::string content = Trim(hash == std::string::npos ? line : line.substr(0, hash));
     if (content.empty()) continue;
@@ -245,7 +269,7 @@ ParseOutcome ConfigSchema::Parse(int argc, const char* const* argv) {
 }
 
 ParseOutcome ConfigSchema::Parse(const std::vector<std::string>& args) {
-  bool help = false, print_config = false;
+  bool help = false, print_config = false, print_table = false;
   // Config files first, wherever they appear, so that flags override them.
   for (size_t i = 0; i < args.size(); ++i) {
     if (args[i] == "--help" || args[i] == "-h") help = true;
@@ -270,6 +294,10 @@ ParseOutcome ConfigSchema::Parse(const std::vector<std::string>& args) {
     if (a.rfind("--config=", 0) == 0) continue;
     if (a == "--print-config") {
       print_config = true;
+      continue;
+    }
+    if (a == "--print-options-table") {
+      print_table = true;
       continue;
     }
     if (a.rfind("--", 0) != 0 || a == "--") {
@@ -299,6 +327,10 @@ ParseOutcome ConfigSchema::Parse(const std::vector<std::string>& args) {
     if (positional_max_ == 0) throw UsageError("unexpected argument '" + positional_.front() + "' (see --help)");
     throw UsageError("expected " + positional_usage_ + " (see --help)");
   }
+  if (print_table) {
+    std::fputs(OptionsTable().c_str(), stdout);
+    return ParseOutcome::kExit;
+  }
   if (print_config) {
     std::fputs(ConfigText().c_str(), stdout);
     return ParseOutcome::kExit;
@@ -317,6 +349,12 @@ std::string ConfigSchema::HelpText() const {
       std::string flag = "--" + e.key;
       std::replace(flag.begin(), flag.end(), '_', '-');
       os << "  " << std::left << std::setw(26) << flag << " ";
+      for (const auto& [alias, key] : aliases_) {
+        if (key != e.key) continue;
+        std::string alias_flag = "--" + alias;
+        std::replace(alias_flag.begin(), alias_flag.end(), '_', '-');
+        os << "(also " << alias_flag << ") ";
+      }
       if (channels) {
         os << e.channel_direction << " " << e.channel_type << " on '" << e.default_text << "'. " << e.help << "\n";
       } else {
@@ -335,6 +373,7 @@ std::string ConfigSchema::HelpText() const {
   print(false);
   os << "  " << std::left << std::setw(26) << "--config FILE" << " read options from FILE first\n"
      << "  " << std::setw(26) << "--print-config" << " print the effective configuration and exit\n"
+     << "  " << std::setw(26) << "--print-options-table" << " print the options as a Markdown table and exit\n"
      << "  " << std::setw(26) << "--help" << " this text\n";
   if (!epilog_.empty()) os << "\n" << epilog_ << (epilog_.back() == '\n' ? "" : "\n");
   return os.str();
@@ -347,6 +386,23 @@ std::string ConfigSchema::ConfigText() const {
     os << "# " << e.help;
     if (!e.unit.empty()) os << " [" << e.unit << "]";
     os << "\n" << e.key << " = " << e.get() << "\n";
+  }
+  return os.str();
+}
+
+std::string ConfigSchema::OptionsTable() const {
+  auto cell = [](std::string text) {
+    std::replace(text.begin(), text.end(), '\n', ' ');
+    std::string out;
+    for (char c : text) out += c == '|' ? std::string("\\|") : std::string(1, c);
+    return out;
+  };
+  std::ostringstream os;
+  os << "| key | unit | default | meaning |\n|---|---|---|---|\n";
+  for (const auto& e : entries_) {
+    const std::string unit = e.kind == "channel" ? e.channel_direction + " " + e.channel_type : e.unit;
+    os << "| `" << e.key << "` | " << cell(unit) << " | `" << cell(e.default_text.empty() ? "\"\"" : e.default_text)
+       << "` | " << cell(e.help) << " |\n";
   }
   return os.str();
 }

@@ -6,6 +6,9 @@
 //   schema.AddDouble("max_speed", &options.max_speed, "m/s", "Forward speed limit", 0.0, 5.0);
 //   if (schema.Parse(argc, argv) == ParseOutcome::kExit) return 0;
 //
+// Libraries declare their options structs through an OptionScope (below) beside the struct;
+// a process nests them (`pose.final_threshold`), so every field is reachable by name.
+//
 // Precedence: defaults < --config FILE (key = value lines, # comments) < --key=value
 // (or --key value). Unknown keys, bad values and out-of-range values throw UsageError
 // with a one-line message naming the file and line, or the flag. Exit code 2 for those.
@@ -13,6 +16,7 @@
 #include <cstdint>
 #include <functional>
 #include <limits>
+#include <map>
 #include <optional>
 #include <set>
 #include <stdexcept>
@@ -72,7 +76,13 @@ class ConfigSchema {
   ParseOutcome Parse(int argc, const char* const* argv);
   ParseOutcome Parse(const std::vector<std::string>& args);  // args without argv[0]
 
+  // Another name for `key` (an older or shorter flag): accepted on the command line and in
+  // files, listed in --help beside the key; --print-config prints the key only.
+  void AddAlias(const std::string& alias, const std::string& key);
+
   void LoadFile(const std::string& path);             // key = value lines
+  // The same from text: `source` names it in errors ("preset carmen").
+  void LoadText(const std::string& text, const std::string& source);
   void Set(const std::string& key, const std::string& text, const std::string& where);
 
   // True when `key` was given in a config file or on the command line (not its default).
@@ -80,6 +90,9 @@ class ConfigSchema {
 
   std::string HelpText() const;
   std::string ConfigText() const;  // the effective configuration in file syntax
+  // Every option as a Markdown table (key, unit, default, meaning): what module READMEs
+  // show, printed by --print-options-table.
+  std::string OptionsTable() const;
   const std::vector<std::string>& positional() const { return positional_; }
   const std::string& program() const { return program_; }
 
@@ -91,6 +104,7 @@ class ConfigSchema {
     std::function<std::string()> get;
   };
   Entry* Find(const std::string& key);
+  const Entry* Find(const std::string& key) const;
   void Add(Entry entry);
 
   std::string program_, summary_, epilog_;
@@ -99,6 +113,49 @@ class ConfigSchema {
   size_t positional_min_ = 0, positional_max_ = 0;
   std::vector<std::string> positional_;
   std::set<std::string> set_keys_;
+  std::map<std::string, std::string> aliases_;  // alias -> key
+};
+
+// Options under one key prefix. A library declares its options struct through a scope
+// beside the struct (`void DeclareOptions(OptionScope scope, MatchOptions& o)`), and the
+// process places it: DeclareOptions(OptionScope(schema).Nested("pose"), options.pose)
+// makes `pose.final_threshold` (flag --pose.final-threshold). A scope is a small value.
+class OptionScope {
+ public:
+  explicit OptionScope(ConfigSchema& schema, std::string prefix = "")
+      : schema_(&schema), prefix_(std::move(prefix)) {}
+
+  OptionScope Nested(const std::string& name) const { return OptionScope(*schema_, Key(name)); }
+  std::string Key(const std::string& name) const { return prefix_.empty() ? name : prefix_ + "." + name; }
+  ConfigSchema& schema() const { return *schema_; }
+
+  void AddDouble(const std::string& name, double* value, const std::string& unit, const std::string& help,
+                 double min = -std::numeric_limits<double>::infinity(),
+                 double max = std::numeric_limits<double>::infinity()) const {
+    schema_->AddDouble(Key(name), value, unit, help, min, max);
+  }
+  void AddInt(const std::string& name, int* value, const std::string& help,
+              int min = std::numeric_limits<int>::min(), int max = std::numeric_limits<int>::max()) const {
+    schema_->AddInt(Key(name), value, help, min, max);
+  }
+  void AddInt64(const std::string& name, int64_t* value, const std::string& help,
+                int64_t min = std::numeric_limits<int64_t>::min(),
+                int64_t max = std::numeric_limits<int64_t>::max()) const {
+    schema_->AddInt64(Key(name), value, help, min, max);
+  }
+  void AddBool(const std::string& name, bool* value, const std::string& help) const {
+    schema_->AddBool(Key(name), value, help);
+  }
+  void AddString(const std::string& name, std::string* value, const std::string& help,
+                 std::vector<std::string> choices = {}) const {
+    schema_->AddString(Key(name), value, help, std::move(choices));
+  }
+  // `alias` is a whole key (not prefixed): the flat name a process has always accepted.
+  void AddAlias(const std::string& alias, const std::string& name) const { schema_->AddAlias(alias, Key(name)); }
+
+ private:
+  ConfigSchema* schema_;
+  std::string prefix_;
 };
 
 // The value option `key` will have once Parse() runs, read before the options are declared

@@ -109,6 +109,91 @@ TEST(ConfigTest, NumberLists) {
   EXPECT_THROW(ParseNumberList("1,x,2", "--pose-noise", 3), UsageError);
 }
 
+// A library's options struct declared through a scope, placed by the process under "pose".
+struct MatchOptionsForTest {
+  double final_threshold = 0.1;
+  int max_iterations = 30;
+};
+void DeclareOptions(OptionScope scope, MatchOptionsForTest& o) {
+  scope.AddDouble("final_threshold", &o.final_threshold, "m", "last correspondence threshold", 0.0, 10.0);
+  scope.AddInt("max_iterations", &o.max_iterations, "Gauss-Newton iterations", 1, 1000);
+}
+
+TEST(OptionScopeTest, NestedKeysAreReachableFromFileAndFlags) {
+  MatchOptionsForTest pose, refine;
+  ConfigSchema s("prog", "test program");
+  DeclareOptions(OptionScope(s).Nested("pose"), pose);
+  DeclareOptions(OptionScope(s).Nested("mapper").Nested("refine"), refine);
+  const std::string file = WriteTemp("pose.final_threshold = 0.25\nmapper.refine.max_iterations = 7\n");
+  ASSERT_EQ(s.Parse({"--config", file, "--pose.max-iterations", "12", "--mapper.refine.final_threshold=0.5"}),
+            ParseOutcome::kRun);
+  EXPECT_DOUBLE_EQ(pose.final_threshold, 0.25);
+  EXPECT_EQ(pose.max_iterations, 12);
+  EXPECT_DOUBLE_EQ(refine.final_threshold, 0.5);
+  EXPECT_EQ(refine.max_iterations, 7);
+  EXPECT_TRUE(s.WasSet("mapper.refine.max_iterations"));
+  EXPECT_FALSE(s.WasSet("max_iterations"));
+  // Errors name the whole key; a bare inner name is unknown.
+  try {
+    s.Parse({"--pose.final-threshold", "11"});
+    FAIL() << "out of range accepted";
+  } catch (const UsageError& e) {
+    EXPECT_NE(std::string(e.what()).find("pose.final_threshold"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(s.Parse({"--final-threshold", "0.2"}), UsageError);
+  const std::string config = s.ConfigText();
+  EXPECT_NE(config.find("\nmapper.refine.final_threshold = 0.5\n"), std::string::npos) << config;
+  std::remove(file.c_str());
+}
+
+TEST(OptionScopeTest, AnAliasSetsItsKeyAndOnlyTheKeyIsPrinted) {
+  MatchOptionsForTest pose;
+  ConfigSchema s("prog", "test program");
+  const OptionScope scope = OptionScope(s).Nested("pose");
+  DeclareOptions(scope, pose);
+  scope.AddAlias("final_threshold", "final_threshold");
+  ASSERT_EQ(s.Parse({"--final-threshold", "0.3"}), ParseOutcome::kRun);
+  EXPECT_DOUBLE_EQ(pose.final_threshold, 0.3);
+  EXPECT_TRUE(s.WasSet("pose.final_threshold"));
+  const std::string file = WriteTemp("final_threshold = 0.4\n");
+  ASSERT_EQ(s.Parse({"--config", file}), ParseOutcome::kRun);
+  EXPECT_DOUBLE_EQ(pose.final_threshold, 0.4);
+  EXPECT_NE(s.HelpText().find("--pose.final-threshold     (also --final-threshold) last correspondence threshold [m]"), std::string::npos)
+      << s.HelpText();
+  EXPECT_EQ(s.ConfigText().find("\nfinal_threshold ="), std::string::npos) << s.ConfigText();
+  EXPECT_THROW(scope.AddAlias("pose.max_iterations", "final_threshold"), std::logic_error);
+  EXPECT_THROW(scope.AddAlias("x", "no_such_option"), std::logic_error);
+  std::remove(file.c_str());
+}
+
+TEST(OptionScopeTest, TheOptionsTableHasARowPerKeyWithUnitAndDefault) {
+  Options o;
+  auto s = MakeSchema(&o);
+  const std::string table = s.OptionsTable();
+  EXPECT_EQ(table.rfind("| key | unit | default | meaning |\n|---|---|---|---|\n", 0), 0u) << table;
+  EXPECT_NE(table.find("| `speed` | m/s | `0.076` | cruise speed |\n"), std::string::npos) << table;
+  EXPECT_NE(table.find("| `sensor` | typhoon\\|cyclone | `typhoon` | sensor model |\n"), std::string::npos) << table;
+  EXPECT_NE(table.find("| `scan_channel` | publishes ladar_scan_t | `LADAR_SCAN` | scans |\n"), std::string::npos)
+      << table;
+  size_t rows = 0;
+  for (char c : table) rows += c == '\n';
+  EXPECT_EQ(rows, 2u + 6u);
+}
+
+TEST(OptionScopeTest, LoadTextNamesItsSourceInErrors) {
+  Options o;
+  auto s = MakeSchema(&o);
+  try {
+    s.LoadText("speed = 0.5\npoints = 99999\n", "preset fast");
+    FAIL() << "out of range accepted";
+  } catch (const UsageError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("preset fast:2: points", 0), 0u) << e.what();
+  }
+  EXPECT_DOUBLE_EQ(o.speed, 0.5);  // the lines before the bad one are in force
+}
+
+
+
 }  // namespace
 TEST(ConfigSchemaTest, WasSetTellsGivenKeysFromDefaults) {
   ConfigSchema schema("t", "test");
