@@ -1,6 +1,6 @@
 // The contour mapper on the public CARMEN logs (issue #7; shared/datasets/SOURCES.md):
 // Intel, Freiburg 079 and MIT CSAIL scored with the relation metric of Kuemmerle et al.
-// 2009 (logger/relations.h) next to Cartographer's published figures (Hess et al., ICRA
+// 2009 (evaluation/relations.h) next to Cartographer's published figures (Hess et al., ICRA
 // 2016, Table II), with raw odometry and iconic scan-to-scan matching (thesis 3.3 with the
 // previous scan as the map) as baselines; the Freiburg hospital log (no relations) is mapped
 // for its time and picture. Every log runs with the same options
@@ -30,8 +30,8 @@
 #include "bench/bench_util.h"
 #include "common/config.h"
 #include "common/file_io.h"
-#include "logger/carmen_log.h"
-#include "logger/relations.h"
+#include "dataset_readers/carmen_log.h"
+#include "evaluation/relations.h"
 #include "render/svg_render.h"
 #include "mapper/carmen_session_options.h"
 #include "mapper/mapping_session.h"

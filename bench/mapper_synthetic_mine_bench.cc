@@ -25,7 +25,7 @@
 #include "common/segment_index.h"
 #include "mapper/contour_map_io.h"
 #include "mapper/contour_mapper.h"
-#include "mapper/map_evaluation.h"
+#include "evaluation/map_evaluation.h"
 #include "sensor_driver/ladar_simulator.h"
 #include "sim/mine_generator.h"
 

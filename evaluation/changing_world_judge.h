@@ -12,7 +12,7 @@
 #include "common/angle.h"
 #include "common/scan.h"
 #include "mapper/contour_mapper.h"
-#include "mapper/map_evaluation.h"
+#include "evaluation/map_evaluation.h"
 #include "sim/changing_world.h"
 
 namespace minenav::mapper::testing {

@@ -1,5 +1,5 @@
 // log_tool import-carmen and log_tool relations on the real Intel log of the datasets folder
-// (logger/dataset_path.h), as users run them; built only when the datasets are there
+// (dataset_readers/dataset_path.h), as users run them; built only when the datasets are there
 // (MINENAV_HAVE_DATASETS). The inline cases and bad input are in carmen_cli_test.cc.
 
 #include <gtest/gtest.h>
@@ -10,7 +10,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "logger/dataset_path.h"
+#include "dataset_readers/dataset_path.h"
 #include "logger/log_tool_run.h"
 #include "logger/test_logs.h"
 

@@ -12,7 +12,7 @@
 #include "common/file_io.h"
 #include "common/node/conversions.h"
 #include "common/node/event_log.h"
-#include "logger/carmen_log.h"
+#include "dataset_readers/carmen_log.h"
 #include "logger/log_tool_commands.h"
 
 namespace minenav {

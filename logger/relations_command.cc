@@ -10,9 +10,9 @@
 #include "common/file_io.h"
 #include "common/node/conversions.h"
 #include "common/node/event_log.h"
-#include "logger/carmen_log.h"
+#include "dataset_readers/carmen_log.h"
 #include "logger/log_tool_commands.h"
-#include "logger/relations.h"
+#include "evaluation/relations.h"
 
 namespace minenav {
 namespace {

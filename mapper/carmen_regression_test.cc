@@ -2,7 +2,7 @@
 // the first 800 scans of the Intel Research Lab log (157 s of a robot driving with people
 // about) through a MappingSession with the options every CARMEN log uses
 // (carmen_session_options.h), scored with the relation metric of Kuemmerle et al. 2009
-// (logger/relations.h) against the 77 relations whose two times both fall inside the
+// (evaluation/relations.h) against the 77 relations whose two times both fall inside the
 // slice. The bounds are the measured errors with a margin (mapper/README.md, "Real data");
 // a regression in preprocessing, pose estimation, the insert/track policy or the mapper's
 // cycle moves these numbers first. The dataset is found through MINENAV_DATASETS_DIR; a
@@ -16,8 +16,8 @@
 #include <string>
 #include <vector>
 
-#include "logger/carmen_log.h"
-#include "logger/relations.h"
+#include "dataset_readers/carmen_log.h"
+#include "evaluation/relations.h"
 #include "mapper/carmen_session_options.h"
 #include "mapper/mapping_session.h"
 

@@ -2,7 +2,7 @@
 
 #include <gtest/gtest.h>
 
-#include "mapper/map_evaluation.h"
+#include "evaluation/map_evaluation.h"
 #include "mapper/map_expansion.h"
 #include "mapper/test_world.h"
 

@@ -16,7 +16,7 @@
 #include "common/config.h"
 #include "common/file_io.h"
 #include "mapper/contour_map_io.h"
-#include "mapper/map_evaluation.h"
+#include "evaluation/map_evaluation.h"
 #include "tests/child_process.h"
 #include "tests/sanitizer.h"
 

@@ -4,7 +4,7 @@
 
 #include <random>
 
-#include "mapper/map_evaluation.h"
+#include "evaluation/map_evaluation.h"
 #include "mapper/test_world.h"
 
 namespace minenav::mapper {

@@ -14,7 +14,7 @@ target_link_libraries(contour_mapper PRIVATE minenav_mapping_session minenav_ren
 if(EXISTS "${CMAKE_SOURCE_DIR}/tests/child_process.cc")
   minenav_test(NAME contour_mapper_process_test
     SOURCES ${CMAKE_CURRENT_LIST_DIR}/contour_mapper_process_test.cc "${CMAKE_SOURCE_DIR}/tests/child_process.cc"
-    LIBS minenav_mapper minenav_common)
+    LIBS minenav_mapper minenav_map_evaluation minenav_common)
   target_compile_definitions(contour_mapper_process_test PRIVATE
     MINENAV_CONTOUR_MAPPER_BIN="$<TARGET_FILE:contour_mapper>" MINENAV_LOG_TOOL_BIN="$<TARGET_FILE:log_tool>")
   add_dependencies(contour_mapper_process_test contour_mapper log_tool)

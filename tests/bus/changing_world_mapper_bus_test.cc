@@ -24,7 +24,7 @@
 #include "common/node/conversions.h"
 #include "common/node/lcm_bus.h"
 #include "evaluation/changing_world_judge.h"
-#include "mapper/map_evaluation.h"
+#include "evaluation/map_evaluation.h"
 #include "minenav/contour_map_t.hpp"
 #include "minenav/ladar_scan_t.hpp"
 #include "minenav/line_map_t.hpp"

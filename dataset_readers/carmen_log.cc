@@ -1,4 +1,4 @@
-#include "logger/carmen_log.h"
+#include "dataset_readers/carmen_log.h"
 
 #include <bzlib.h>
 #include <zlib.h>

@@ -1,5 +1,5 @@
 // The Kuemmerle 2009 relation metric on the real Intel log of the datasets folder
-// (logger/dataset_path.h); built only when the datasets are there (MINENAV_HAVE_DATASETS).
+// (dataset_readers/dataset_path.h); built only when the datasets are there (MINENAV_HAVE_DATASETS).
 // The parsing and exact small cases are in relations_test.cc.
 
 #include <gtest/gtest.h>
@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
-#include "logger/carmen_log.h"
-#include "logger/dataset_path.h"
-#include "logger/relations.h"
+#include "dataset_readers/carmen_log.h"
+#include "dataset_readers/dataset_path.h"
+#include "evaluation/relations.h"
 
 namespace minenav {
 namespace {

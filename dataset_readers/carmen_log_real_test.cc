@@ -1,4 +1,4 @@
-// The CARMEN reader on the real logs of the datasets folder (logger/dataset_path.h); built
+// The CARMEN reader on the real logs of the datasets folder (dataset_readers/dataset_path.h); built
 // only when the datasets are there (MINENAV_HAVE_DATASETS). The inline and hostile-input
 // cases are in carmen_log_test.cc.
 
@@ -9,8 +9,8 @@
 #include <string>
 
 #include "common/scan.h"
-#include "logger/carmen_log.h"
-#include "logger/dataset_path.h"
+#include "dataset_readers/carmen_log.h"
+#include "dataset_readers/dataset_path.h"
 
 namespace minenav {
 namespace {

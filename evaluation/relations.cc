@@ -1,4 +1,4 @@
-#include "logger/relations.h"
+#include "evaluation/relations.h"
 
 #include <algorithm>
 #include <charconv>
@@ -8,7 +8,7 @@
 
 #include "common/angle.h"
 #include "common/pose_at_time.h"
-#include "logger/carmen_log.h"
+#include "dataset_readers/carmen_log.h"
 
 namespace minenav {
 namespace {

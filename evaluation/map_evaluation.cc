@@ -1,4 +1,4 @@
-#include "mapper/map_evaluation.h"
+#include "evaluation/map_evaluation.h"
 
 #include <algorithm>
 #include <cmath>

@@ -3,7 +3,7 @@
 // logs: Intel, Freiburg 079, MIT CSAIL, Freiburg hospital) into the plain types our
 // algorithms use. No LCM: `log_tool import-carmen` writes the result as an LCM log.
 // The datasets and their quirks are described in shared/datasets/SOURCES.md; the
-// metric they are scored with is in logger/relations.h (Kuemmerle et al. 2009).
+// metric they are scored with is in evaluation/relations.h (Kuemmerle et al. 2009).
 //
 // Lines read (everything else, e.g. RLASER, NEFF, SYNC, TRUEPOS, is counted and ignored):
 //   FLASER n r1..rn  x y theta  odom_x odom_y odom_theta  ipc_timestamp host logger_timestamp

@@ -1,4 +1,4 @@
-#include "logger/relations.h"
+#include "evaluation/relations.h"
 
 #include <gtest/gtest.h>
 
