@@ -2,13 +2,12 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 
-#include <cstdio>
-#include <fstream>
-
 #include "common/angle.h"
+#include "tests/temp_dir.h"
 
 namespace minenav {
 namespace {
@@ -33,11 +32,10 @@ ConfigSchema MakeSchema(Options* o) {
   return s;
 }
 
+// A new file in this binary's temporary folder (removed when the binary exits).
 std::string WriteTemp(const std::string& content) {
-  char name[] = "/tmp/minenav_config_XXXXXX";
-  const int fd = mkstemp(name);
-  EXPECT_GE(fd, 0);
-  close(fd);
+  static int count = 0;
+  const std::string name = testing::TempPath("config_" + std::to_string(count++) + ".conf");
   std::ofstream(name) << content;
   return name;
 }
@@ -208,7 +206,7 @@ TEST(ConfigSchemaTest, WasSetTellsGivenKeysFromDefaults) {
 // Issue 12: `preset = carmen` in a config file showed under --print-config while the mapper
 // kept the survey values: the preset was read from the command line only.
 TEST(ConfigSchemaTest, PeekOptionReadsTheCommandLineThenTheConfigFile) {
-  const std::string path = (std::filesystem::temp_directory_path() / "minenav_peek_option.conf").string();
+  const std::string path = testing::TempPath("peek_option.conf");
   std::ofstream(path) << "# a preset in a file\nsome_key = 3\npreset = carmen   # comment\n";
   EXPECT_EQ(PeekOption({"--config", path}, "preset").value_or(""), "carmen");
   EXPECT_EQ(PeekOption({"--config=" + path, "--preset", "survey"}, "preset").value_or(""), "survey");

@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "tests/temp_dir.h"
+
 namespace minenav {
 namespace {
 
@@ -63,8 +65,8 @@ TEST(FileIoTest, StationsWithOptionalWorldColumn) {
 }
 
 TEST(FileIoTest, AtomicWriteLeavesNoTemporary) {
-  const auto dir = std::filesystem::temp_directory_path() / "minenav_fileio_test";
-  std::filesystem::create_directories(dir);
+  const testing::TempDir temp("minenav_fileio_test");
+  const std::filesystem::path& dir = temp.path();
   const std::string path = (dir / "out.json").string();
   SaveSegmentsJson(path, {{0, 0, 1, 1}});
   EXPECT_EQ(LoadSegmentsJson(path).size(), 1u);
@@ -72,12 +74,11 @@ TEST(FileIoTest, AtomicWriteLeavesNoTemporary) {
   for (const auto& e : std::filesystem::directory_iterator(dir)) files += e.is_regular_file();
   EXPECT_EQ(files, 1);
   EXPECT_THROW(SaveSegmentsJson((dir / "missing" / "x.json").string(), {}), InputError);
-  std::filesystem::remove_all(dir);
 }
 
 TEST(FileIoTest, OutputThatIsAnInputIsRefused) {
-  const auto dir = std::filesystem::temp_directory_path() / "minenav_fileio_same_test";
-  std::filesystem::create_directories(dir);
+  const testing::TempDir temp("minenav_fileio_same_test");
+  const std::filesystem::path& dir = temp.path();
   const std::string log = (dir / "run.lcm").string();
   WriteFileAtomically(log, "data");
   EXPECT_THROW(CheckOutputIsNotInput("--map-out", log, {log}), InputError);
@@ -88,7 +89,6 @@ TEST(FileIoTest, OutputThatIsAnInputIsRefused) {
   EXPECT_NO_THROW(CheckOutputIsNotInput("--map-out", (dir / "map.json").string(), {log}));
   EXPECT_NO_THROW(CheckOutputIsNotInput("--map-out", "", {log}));
   EXPECT_EQ(ReadFile(log), "data");
-  std::filesystem::remove_all(dir);
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 
 #include "common/node/conversions.h"
 #include "common/node/event_log.h"
+#include "tests/temp_dir.h"
 
 namespace minenav::logger_test {
 
@@ -69,19 +70,11 @@ void WriteTestLog(const std::string& path, const TestRun& run) {
 
 namespace {
 
-std::filesystem::path TempRoot() {
-  return std::filesystem::temp_directory_path() / ("minenav_logger_" + std::to_string(::getpid()));
+// This process's temporary files, removed when the binary exits.
+const std::filesystem::path& TempRoot() {
+  static const minenav::testing::TempDir root("minenav_logger");
+  return root.path();
 }
-
-// Removes this process's temporary files when the tests end.
-class TempCleanup : public ::testing::Environment {
- public:
-  void TearDown() override {
-    std::error_code ec;
-    std::filesystem::remove_all(TempRoot(), ec);
-  }
-};
-[[maybe_unused]] ::testing::Environment* const kCleanup = ::testing::AddGlobalTestEnvironment(new TempCleanup);
 
 }  // namespace
 

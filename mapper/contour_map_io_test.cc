@@ -7,6 +7,7 @@
 #include <filesystem>
 
 #include "common/file_io.h"
+#include "tests/temp_dir.h"
 
 namespace minenav::mapper {
 namespace {
@@ -32,7 +33,7 @@ TEST(ContourMapIoTest, RoundTrip) {
   EXPECT_TRUE(std::next(back.contours().begin())->second.closed);
   EXPECT_EQ(back.NumSegments(), map.NumSegments());
 
-  const std::string path = (std::filesystem::temp_directory_path() / "mapper_io_test_map.json").string();
+  const std::string path = ::minenav::testing::TempPath("mapper_io_test_map.json");
   SaveContourMapJson(path, map);
   EXPECT_EQ(LoadContourMapJson(path).NumSegments(), 6);
   std::remove(path.c_str());

@@ -19,6 +19,7 @@
 #include "evaluation/map_evaluation.h"
 #include "tests/child_process.h"
 #include "tests/sanitizer.h"
+#include "tests/temp_dir.h"
 
 namespace minenav {
 namespace {
@@ -35,12 +36,8 @@ int RunProcess(const std::vector<std::string>& argv, const fs::path& output) {
 
 class ContourMapperProcessTest : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("contour_mapper_test_" + std::to_string(::getpid()));
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  fs::path dir_;
+  const testing::TempDir temp_{"contour_mapper_test"};
+  const fs::path dir_ = temp_.path();
 };
 
 TEST_F(ContourMapperProcessTest, MapsASurveyLogToTruth) {
@@ -144,8 +141,8 @@ TEST_F(ContourMapperProcessTest, AMapWithA20KilometreSegmentIsRefusedAtOnce) {
 class ContourMapperSignalTest : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    dir_ = new fs::path(fs::temp_directory_path() / ("contour_mapper_signal_test_" + std::to_string(::getpid())));
-    fs::create_directories(*dir_);
+    temp_ = new testing::TempDir("contour_mapper_signal_test");
+    dir_ = &temp_->path();
     const fs::path world = *dir_ / "mine.json", stations = *dir_ / "st.csv";
     ASSERT_EQ(RunProcess({MINENAV_LOG_TOOL_BIN, "generate", "--kind", "mine", "--seed", "2", "--world-out",
                           world.string(), "--stations-out", stations.string()},
@@ -163,8 +160,9 @@ class ContourMapperSignalTest : public ::testing::Test {
         << ReadTextFile((*dir_ / "survey.txt").string());
   }
   static void TearDownTestSuite() {
-    fs::remove_all(*dir_);
-    delete dir_;
+    delete temp_;
+    temp_ = nullptr;
+    dir_ = nullptr;
   }
   static std::string Log() { return (*dir_ / "survey.lcm").string(); }
   static std::string Path(const std::string& name) { return (*dir_ / name).string(); }
@@ -202,9 +200,11 @@ class ContourMapperSignalTest : public ::testing::Test {
     }
   }
 
-  static fs::path* dir_;
+  static testing::TempDir* temp_;
+  static const fs::path* dir_;
 };
-fs::path* ContourMapperSignalTest::dir_ = nullptr;
+testing::TempDir* ContourMapperSignalTest::temp_ = nullptr;
+const fs::path* ContourMapperSignalTest::dir_ = nullptr;
 
 // Issue 11, item 12: SIGTERM at scan 6 of 20, while periodic refinements run. Before: exit 0
 // with the map, poses and SVG of 6 scans under the final names, as if complete.

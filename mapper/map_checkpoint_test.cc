@@ -7,6 +7,7 @@
 
 #include "common/file_io.h"
 #include "mapper/test_world.h"
+#include "tests/temp_dir.h"
 
 namespace minenav::mapper {
 namespace {
@@ -85,19 +86,18 @@ void ExpectSameState(const MappingSession& a, const MappingSession& b) {
 class MapCheckpointTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = std::filesystem::temp_directory_path() / ("map_checkpoint_test_" + std::to_string(::getpid()));
-    std::filesystem::create_directories(dir_);
+    dir_ = temp_.path();
     for (size_t k = 0; k < 5; ++k) Add(session_, k);
     // A refused scan, so the counter is not zero.
     LadarScan far = MakeScan(testing::Rectangle(100, 100, 104, 103), Pose2(102, 101, 0));
     ASSERT_FALSE(session_.AddScan(far, Pose2(102, 101, 0)).accepted());
   }
-  void TearDown() override { std::filesystem::remove_all(dir_); }
   static void Add(MappingSession& s, size_t k) {
     const ScanResult r = s.AddScan(NoisyScan(kDrive[k], static_cast<unsigned>(k + 1), static_cast<int64_t>(k + 1) * 1000),
                                    Odometry(kDrive[k]));
     ASSERT_TRUE(r.accepted()) << k << ": " << r.reason;
   }
+  const ::minenav::testing::TempDir temp_{"map_checkpoint_test"};
   std::filesystem::path dir_;
   MappingSession session_{Options()};
 };

@@ -36,4 +36,11 @@ class TempDir {
   std::filesystem::path path_;
 };
 
+// A path in one folder of this test binary's own, removed when the binary exits: for tests
+// that need a file or two and no folder of their own.
+inline std::string TempPath(const std::string& name) {
+  static TempDir dir("minenav_test");
+  return dir / name;
+}
+
 }  // namespace minenav::testing

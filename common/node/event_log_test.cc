@@ -16,11 +16,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// A directory of this process's files, removed when the test binary exits.
-std::string TempPath(const std::string& name) {
-  static testing::TempDir dir("minenav_event_log_test");
-  return (dir.path() / name).string();
-}
+using testing::TempPath;
 
 odometry_t Odometry(int64_t utime, double x) {
   odometry_t m{};
