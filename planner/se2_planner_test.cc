@@ -180,7 +180,7 @@ TEST(Se2PlannerTest, DrivesThroughACorridor) {
   // Turning round is impossible in 6 m for a 10 m vehicle.
   const Se2PlanResult back = planner.Plan(s, Pose2(54, 0, kPi), [] {
     SearchLimits l;
-    l.max_expansions = 20000;
+    l.max_expansions = 3000;
     return l;
   }());
   EXPECT_NE(back.status, SearchStatus::kFound);
