@@ -1,0 +1,112 @@
+#include "planner/analytic_shot.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace minenav {
+namespace {
+
+// The angle in [0, 2 pi).
+double Mod2Pi(double a) {
+  const double m = std::fmod(a, 2.0 * kPi);
+  return m < 0.0 ? m + 2.0 * kPi : m;
+}
+
+void Add(std::vector<MotionPiece>& pieces, Motion motion, double amount, double radius) {
+  if (std::abs(amount) < 1e-12) return;
+  pieces.push_back({motion, amount, IsArc(motion) ? radius : 0.0, {}});
+}
+
+// Turn in place, straight (forward or reverse), turn in place.
+std::vector<MotionPiece> TurnStraightTurn(const Pose2& a, const Pose2& b, bool reverse) {
+  std::vector<MotionPiece> p;
+  const double d = TranslationDistance(a, b);
+  if (d < 1e-12) {
+    Add(p, Motion::kTurnInPlace, NormalizeAngle(b.theta - a.theta), 0.0);
+    return p;
+  }
+  const double heading = std::atan2(b.y - a.y, b.x - a.x) + (reverse ? kPi : 0.0);
+  Add(p, Motion::kTurnInPlace, NormalizeAngle(heading - a.theta), 0.0);
+  Add(p, reverse ? Motion::kReverse : Motion::kForward, d, 0.0);
+  Add(p, Motion::kTurnInPlace, NormalizeAngle(b.theta - heading), 0.0);
+  return p;
+}
+
+// The centre of the turning circle on `side` (+1 left, -1 right) of pose p.
+Eigen::Vector2d Centre(const Pose2& p, int side, double r) {
+  return {p.x - side * r * std::sin(p.theta), p.y + side * r * std::cos(p.theta)};
+}
+
+// A forward Dubins CSC word (side1, side2: +1 L, -1 R) from a to b; empty if it does not exist.
+std::vector<MotionPiece> DubinsCsc(const Pose2& a, const Pose2& b, int side1, int side2, double r) {
+  const Eigen::Vector2d c1 = Centre(a, side1, r), c2 = Centre(b, side2, r), d = c2 - c1;
+  const double dist = d.norm(), phi = std::atan2(d.y(), d.x());
+  double straight = dist, psi = phi;  // tangent heading
+  if (side1 != side2) {
+    if (dist < 2.0 * r) return {};
+    straight = std::sqrt(dist * dist - 4.0 * r * r);
+    psi = phi - side2 * std::atan2(2.0 * r, straight);  // LSR: +, RSL: -
+  }
+  const double turn1 = Mod2Pi(side1 * (psi - a.theta)), turn2 = Mod2Pi(side2 * (b.theta - psi));
+  std::vector<MotionPiece> p;
+  const Motion arc1 = side1 > 0 ? Motion::kArcLeft : Motion::kArcRight;
+  const Motion arc2 = side2 > 0 ? Motion::kArcLeft : Motion::kArcRight;
+  Add(p, arc1, r * turn1, r);
+  Add(p, Motion::kForward, straight, r);
+  Add(p, arc2, r * turn2, r);
+  return p;
+}
+
+Motion Reversed(Motion m) {
+  // A forward path of the problem with headings turned by pi, driven backwards: a left turn
+  // of the turned heading is a right arc in reverse, and the other way round.
+  switch (m) {
+    case Motion::kForward: return Motion::kReverse;
+    case Motion::kArcLeft: return Motion::kArcRightReverse;
+    case Motion::kArcRight: return Motion::kArcLeftReverse;
+    default: return m;
+  }
+}
+
+// Fills in the end poses; false when the pieces do not end at `to`.
+bool Trace(const Pose2& from, const Pose2& to, std::vector<MotionPiece>& pieces) {
+  Pose2 p = from;
+  for (MotionPiece& piece : pieces) {
+    p = PoseAfter(p, piece.motion, piece.amount, piece.radius);
+    piece.end = p;
+  }
+  return TranslationDistance(p, to) < 1e-6 && HeadingDistance(p, to) < 1e-6;
+}
+
+}  // namespace
+
+std::vector<AnalyticShot> AnalyticShots(const Pose2& from, const Pose2& to, double radius, const MotionCosts& costs,
+                                        int previous_direction) {
+  std::vector<std::vector<MotionPiece>> words = {TurnStraightTurn(from, to, false), TurnStraightTurn(from, to, true)};
+  const Pose2 from_turned(from.x, from.y, NormalizeAngle(from.theta + kPi));
+  const Pose2 to_turned(to.x, to.y, NormalizeAngle(to.theta + kPi));
+  for (const int s1 : {1, -1})
+    for (const int s2 : {1, -1}) {
+      words.push_back(DubinsCsc(from, to, s1, s2, radius));
+      std::vector<MotionPiece> back = DubinsCsc(from_turned, to_turned, s1, s2, radius);
+      for (MotionPiece& piece : back) piece.motion = Reversed(piece.motion);
+      words.push_back(back);
+    }
+  std::vector<AnalyticShot> shots;
+  for (auto& w : words) {
+    if (w.empty() && TranslationDistance(from, to) + HeadingDistance(from, to) > 1e-9) continue;
+    if (!Trace(from, to, w)) continue;
+    AnalyticShot shot;
+    int direction = previous_direction;
+    for (const MotionPiece& piece : w) {
+      shot.cost += PieceCost(piece, direction, costs);
+      if (DriveDirection(piece.motion) != 0) direction = DriveDirection(piece.motion);
+    }
+    shot.pieces = std::move(w);
+    shots.push_back(std::move(shot));
+  }
+  std::sort(shots.begin(), shots.end(), [](const AnalyticShot& a, const AnalyticShot& b) { return a.cost < b.cost; });
+  return shots;
+}
+
+}  // namespace minenav

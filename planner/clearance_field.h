@@ -1,0 +1,39 @@
+#pragma once
+// The clearance field: on a grid of cells, the distance (m) from each cell's centre to the
+// nearest wall, capped. Distance is 1-Lipschitz, so anywhere in a cell the true clearance is
+// within Slack() (half the cell diagonal) of the cell's value. The collision checker uses it
+// to decide most poses without an exact test, and the obstacle heuristic to know where the
+// vehicle's centre can be at all.
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "common/geometry.h"
+#include "common/segment_index.h"
+
+namespace minenav {
+
+class ClearanceField {
+ public:
+  // Distances to the nearest of `walls` at the cell centres of `frame`, capped at
+  // max_distance (m): a cell farther than that from every wall holds max_distance.
+  ClearanceField(const std::vector<Segment>& walls, const GridFrame& frame, double max_distance);
+
+  // m, the value of cell (ix, iy); 0 outside the frame.
+  double AtCell(int ix, int iy) const {
+    return frame_.Contains(ix, iy) ? values_[static_cast<size_t>(frame_.Index(ix, iy))] : 0.0;
+  }
+  // m, the value of the cell holding p; 0 outside the frame.
+  double At(const Eigen::Vector2d& p) const { return AtCell(frame_.CellX(p.x()), frame_.CellY(p.y())); }
+  // m: the true clearance anywhere in a cell is within this of its value (up to the cap).
+  double Slack() const { return 0.5 * std::sqrt(2.0) * frame_.cell; }
+  double max_distance() const { return max_distance_; }
+  const GridFrame& frame() const { return frame_; }
+
+ private:
+  GridFrame frame_;
+  double max_distance_;
+  std::vector<double> values_;
+};
+
+}  // namespace minenav

@@ -1,0 +1,93 @@
+#include "planner/motion.h"
+
+#include <cmath>
+
+namespace minenav {
+
+namespace {
+constexpr const char* kNames[] = {"forward",       "reverse",          "arc_left",         "arc_right",
+                                  "turn_in_place", "arc_left_reverse", "arc_right_reverse"};
+}
+
+std::string ToString(Motion motion) {
+  const int i = static_cast<int>(motion);
+  return i >= 0 && i < 7 ? kNames[i] : "unknown";
+}
+
+bool MotionFromString(const std::string& name, Motion& motion) {
+  for (int i = 0; i < 7; ++i)
+    if (name == kNames[i]) {
+      motion = static_cast<Motion>(i);
+      return true;
+    }
+  return false;
+}
+
+int DriveDirection(Motion motion) {
+  switch (motion) {
+    case Motion::kForward:
+    case Motion::kArcLeft:
+    case Motion::kArcRight: return 1;
+    case Motion::kReverse:
+    case Motion::kArcLeftReverse:
+    case Motion::kArcRightReverse: return -1;
+    case Motion::kTurnInPlace: return 0;
+  }
+  return 0;
+}
+
+int TurnSide(Motion motion) {
+  if (motion == Motion::kArcLeft || motion == Motion::kArcLeftReverse) return 1;
+  if (motion == Motion::kArcRight || motion == Motion::kArcRightReverse) return -1;
+  return 0;
+}
+
+Pose2 PoseAfter(const Pose2& start, Motion motion, double amount, double radius) {
+  if (motion == Motion::kTurnInPlace) return {start.x, start.y, NormalizeAngle(start.theta + amount)};
+  const double s = DriveDirection(motion) * amount;  // signed distance along the heading
+  const int side = TurnSide(motion);
+  if (side == 0)
+    return {start.x + s * std::cos(start.theta), start.y + s * std::sin(start.theta), start.theta};
+  // About the centre at distance R on the given side: heading change dtheta = side s / R.
+  const double dtheta = side * s / radius;
+  const double cx = start.x - side * radius * std::sin(start.theta);
+  const double cy = start.y + side * radius * std::cos(start.theta);
+  const double theta = start.theta + dtheta;
+  return {cx + side * radius * std::sin(theta), cy - side * radius * std::cos(theta), NormalizeAngle(theta)};
+}
+
+double PlannedPath::Length() const {
+  double length = 0.0;
+  for (const MotionPiece& p : pieces)
+    if (p.motion != Motion::kTurnInPlace) length += p.amount;
+  return length;
+}
+
+int PlannedPath::Reversals() const {
+  int reversals = 0, last = 0;
+  for (const MotionPiece& p : pieces) {
+    const int d = DriveDirection(p.motion);
+    if (d == 0) continue;
+    if (last != 0 && d != last) ++reversals;
+    last = d;
+  }
+  return reversals;
+}
+
+std::vector<MotionPiece> MergePieces(const std::vector<MotionPiece>& pieces) {
+  std::vector<MotionPiece> merged;
+  for (const MotionPiece& p : pieces) {
+    // A turn in place stays under half a turn, so its end pose says which way it turned.
+    const bool too_far = p.motion == Motion::kTurnInPlace &&
+                         !merged.empty() && std::abs(merged.back().amount + p.amount) > 0.99 * kPi;
+    if (!merged.empty() && merged.back().motion == p.motion && merged.back().radius == p.radius && !too_far) {
+      merged.back().amount += p.amount;
+      merged.back().end = p.end;
+    } else {
+      merged.push_back(p);
+    }
+  }
+  return merged;
+}
+
+}  // namespace minenav

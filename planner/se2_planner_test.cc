@@ -1,0 +1,286 @@
+// The SE(2) planner: its motions and analytic shots, the footprint and its collision test
+// against brute force, and planned paths judged by the independent checker
+// (testing/path_checker.h) in a room, a corridor and the multi-point corner turn; every bad
+// request gets a clear status and reason.
+
+#include "planner/se2_planner.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "common/file_io.h"
+#include "planner/analytic_shot.h"
+#include "planner/test_maps.h"
+#include "planner/testing/path_checker.h"
+
+namespace minenav {
+namespace {
+
+using planner_test::AsChecked;
+
+testing::PathCheckSettings CheckerFor(const Se2Planner& planner) {
+  testing::PathCheckSettings s;
+  s.polygon = planner.footprint().vertices;
+  s.turn_radius = planner.options().turn_radius;
+  s.clearance = planner.options().clearance;
+  return s;
+}
+
+TEST(MotionTest, ArcsTurnAboutTheCentreOnTheirSide) {
+  const double r = 4.0, quarter = r * kPi / 2;
+  const Pose2 o(0, 0, 0);
+  const Pose2 l = PoseAfter(o, Motion::kArcLeft, quarter, r);
+  EXPECT_NEAR(l.x, 4.0, 1e-12);
+  EXPECT_NEAR(l.y, 4.0, 1e-12);
+  EXPECT_NEAR(l.theta, kPi / 2, 1e-12);
+  const Pose2 rr = PoseAfter(o, Motion::kArcRight, quarter, r);
+  EXPECT_NEAR(rr.y, -4.0, 1e-12);
+  EXPECT_NEAR(rr.theta, -kPi / 2, 1e-12);
+  // Reversing along the left circle: backwards, heading turning clockwise.
+  const Pose2 lr = PoseAfter(o, Motion::kArcLeftReverse, quarter, r);
+  EXPECT_NEAR(lr.x, -4.0, 1e-12);
+  EXPECT_NEAR(lr.y, 4.0, 1e-12);
+  EXPECT_NEAR(lr.theta, -kPi / 2, 1e-12);
+  const Pose2 b = PoseAfter(o, Motion::kReverse, 2.0, r);
+  EXPECT_NEAR(b.x, -2.0, 1e-12);
+  const Pose2 t = PoseAfter(o, Motion::kTurnInPlace, -1.0, r);
+  EXPECT_NEAR(t.theta, -1.0, 1e-12);
+  EXPECT_EQ(t.x, 0.0);
+}
+
+TEST(MotionTest, MergedPathsCountLengthAndReversals) {
+  PlannedPath p;
+  p.pieces = MergePieces({{Motion::kForward, 1.0, 0.0, {}},
+                          {Motion::kForward, 2.0, 0.0, {}},
+                          {Motion::kTurnInPlace, 0.5, 0.0, {}},
+                          {Motion::kArcLeftReverse, 1.5, 4.0, {}},
+                          {Motion::kArcLeft, 1.0, 4.0, {}}});
+  ASSERT_EQ(p.pieces.size(), 4u);
+  EXPECT_DOUBLE_EQ(p.pieces[0].amount, 3.0);
+  EXPECT_DOUBLE_EQ(p.Length(), 5.5);
+  EXPECT_EQ(p.Reversals(), 2);
+  // Turns in place are merged only while under half a turn.
+  const auto turns = MergePieces({{Motion::kTurnInPlace, 2.0, 0.0, {}}, {Motion::kTurnInPlace, 2.0, 0.0, {}}});
+  EXPECT_EQ(turns.size(), 2u);
+  Motion m;
+  EXPECT_TRUE(MotionFromString("arc_right_reverse", m));
+  EXPECT_EQ(m, Motion::kArcRightReverse);
+  EXPECT_EQ(static_cast<int>(m), 6);  // path_segment_t.ARC_RIGHT_REVERSE
+}
+
+TEST(AnalyticShotTest, EveryShotIsAFeasiblePathToTheGoal) {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-20, 20), a(-kPi, kPi);
+  testing::PathCheckSettings st;
+  st.polygon = {{0.1, 0.1}, {-0.1, 0.1}, {-0.1, -0.1}, {0.1, -0.1}};
+  st.sample_step = 0.5;
+  int csc = 0;
+  for (int trial = 0; trial < 100; ++trial) {
+    const Pose2 from(u(rng), u(rng), a(rng)), to(u(rng), u(rng), a(rng));
+    const auto shots = AnalyticShots(from, to, 4.0, MotionCosts{});
+    ASSERT_GE(shots.size(), 2u);  // the two turn-straight-turn shots always exist
+    for (size_t k = 1; k < shots.size(); ++k) EXPECT_LE(shots[k - 1].cost, shots[k].cost);
+    for (const AnalyticShot& s : shots) {
+      PlannedPath p;
+      p.start = from;
+      p.pieces = s.pieces;
+      const auto report = testing::CheckPath({}, from, AsChecked(p), st);
+      EXPECT_TRUE(report.ok) << report.problem;
+      EXPECT_NEAR(report.length, p.Length(), 1e-6);
+      EXPECT_NEAR(TranslationDistance(s.pieces.back().end, to), 0.0, 1e-6);
+      if (IsArc(s.pieces.front().motion)) ++csc;
+    }
+  }
+  EXPECT_GT(csc, 300);  // the Dubins words exist for most pairs this far apart
+}
+
+TEST(FootprintTest, RectangleRadiiAndValidation) {
+  const Footprint f = Footprint::Rectangle(3.3, 10.0);
+  EXPECT_NEAR(InscribedRadius(f), 1.65, 1e-12);
+  EXPECT_NEAR(CircumscribedRadius(f), std::hypot(1.65, 5.0), 1e-12);
+  EXPECT_EQ(ValidateFootprint(f), "");
+  EXPECT_EQ(ValidateFootprint({{{0, 0}, {1, 0}}}), "footprint needs at least 3 vertices, has 2");
+  EXPECT_EQ(ValidateFootprint({{{1, 1}, {2, 1}, {2, 2}}}),
+            "footprint does not contain the vehicle's origin (the pose the planner plans for)");
+  EXPECT_EQ(ValidateFootprint({{{1, 1}, {-1, -1}, {1, -1}, {-1, 1}}}), "footprint edges cross (not a simple polygon)");
+  const Footprint cw = Normalized({{{1, -1}, {-1, -1}, {-1, 1}, {1, 1}}});
+  EXPECT_EQ(cw.vertices.front(), Eigen::Vector2d(1, 1));
+  EXPECT_THROW(ParseFootprintJson("{\"footprint\": [[1, 1], [2]]}", "f.json"), InputError);
+  EXPECT_EQ(ParseFootprintJson("{\"footprint\": [[1, 1], [-1, 1], [-1, -1], [1, -1]]}", "f.json").vertices.size(), 4u);
+}
+
+TEST(FootprintCollisionTest, FieldAndExactTestAgreeWithBruteForce) {
+  std::vector<Segment> map = planner_test::Crossing(6.0, 20.0);
+  map.push_back({2.0, 8.0, 2.5, 9.0});  // a stone in the north arm
+  Se2PlannerOptions o;
+  o.clearance = 0.2;
+  const Se2Planner planner(map, Footprint::Rectangle(3.3, 10.0), o);
+  ASSERT_EQ(planner.setup_error(), "");
+  testing::PathCheckSettings st = CheckerFor(planner);
+  st.clearance = o.clearance + 0.5 * o.collision_step;  // the planner's internal margin
+  // The map ends at the box of its segments: its sides are walls too.
+  std::vector<Segment> walls = map;
+  planner_test::AddBox(walls, -20, -20, 20, 20);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-20, 20), a(-kPi, kPi);
+  int free = 0, blocked = 0;
+  for (int i = 0; i < 3000; ++i) {
+    const Pose2 p(u(rng), u(rng), a(rng));
+    const auto report = testing::CheckPath(walls, p, {}, st);  // samples only the start pose
+    bool inside_box = true;
+    for (const auto& v : st.polygon) {
+      const Eigen::Vector2d w = p * v;
+      inside_box = inside_box && std::abs(w.x()) <= 20 && std::abs(w.y()) <= 20;
+    }
+    const bool brute_free = report.ok && inside_box;
+    EXPECT_EQ(planner.PoseFree(p), brute_free) << p << " clearance " << report.min_clearance;
+    (brute_free ? free : blocked)++;
+  }
+  EXPECT_GT(free, 50);
+  EXPECT_GT(blocked, 1000);
+}
+
+TEST(Se2PlannerTest, RandomRequestsInARoomGiveCheckedPaths) {
+  const std::vector<Segment> map = planner_test::Room(40, 30);
+  Se2PlannerOptions o;
+  o.clearance = 0.1;
+  const Se2Planner planner(map, Footprint::Rectangle(3.3, 10.0), o);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> ux(6, 34), uy(6, 24), a(-kPi, kPi);
+  int found = 0;
+  for (int trial = 0; trial < 12; ++trial) {
+    Pose2 s(ux(rng), uy(rng), a(rng)), g(ux(rng), uy(rng), a(rng));
+    if (!planner.PoseFree(s) || !planner.PoseFree(g)) continue;
+    const Se2PlanResult r = planner.Plan(s, g);
+    ASSERT_EQ(r.status, SearchStatus::kFound) << r.reason;
+    const auto report = testing::CheckPath(map, s, AsChecked(r.path), CheckerFor(planner));
+    EXPECT_TRUE(report.ok) << report.problem;
+    EXPECT_GE(report.min_clearance, o.clearance);
+    EXPECT_NEAR(report.length, r.path.Length(), 1e-6);
+    EXPECT_GE(r.path.Length() + 1e-9, TranslationDistance(s, g) - 1e-9);
+    EXPECT_NEAR(TranslationDistance(r.path.pieces.back().end, g), 0.0, 1e-6);
+    EXPECT_NEAR(HeadingDistance(r.path.pieces.back().end, g), 0.0, 1e-6);
+    ++found;
+  }
+  EXPECT_GE(found, 6);
+}
+
+TEST(Se2PlannerTest, DrivesThroughACorridor) {
+  const std::vector<Segment> map = planner_test::Corridor(60, 6);
+  const Se2Planner planner(map, Footprint::Rectangle(3.3, 10.0), {});
+  const Pose2 s(6, 0.5, 0.0), g(54, -0.5, 0.0);
+  const Se2PlanResult r = planner.Plan(s, g);
+  ASSERT_EQ(r.status, SearchStatus::kFound) << r.reason;
+  const auto report = testing::CheckPath(map, s, AsChecked(r.path), CheckerFor(planner));
+  EXPECT_TRUE(report.ok) << report.problem;
+  EXPECT_LT(r.path.Length(), 49.0);  // barely longer than the 48 m between them
+  EXPECT_EQ(r.path.Reversals(), 0);
+  // Turning round is impossible in 6 m for a 10 m vehicle.
+  const Se2PlanResult back = planner.Plan(s, Pose2(54, 0, kPi), [] {
+    SearchLimits l;
+    l.max_expansions = 3000;
+    return l;
+  }());
+  EXPECT_NE(back.status, SearchStatus::kFound);
+}
+
+TEST(Se2PlannerTest, TurnsACornerWhereTurningInPlaceDoesNotFit) {
+  // A 10 m x 3.3 m miner in the south entry of a crossing of two 6 m entries turns into the
+  // east crosscut. Turning in place at the crossing does not fit (its circle is 10.5 m
+  // across, the pillar corners are 4.24 m from the centre): arcs and short turns where the
+  // polygon's sweep is free.
+  const std::vector<Segment> map = planner_test::Crossing(6.0, 20.0);
+  const Se2Planner planner(map, Footprint::Rectangle(3.3, 10.0), {});
+  const Pose2 centre(0, 0, kPi / 2);
+  EXPECT_TRUE(planner.PoseFree(centre));
+  EXPECT_TRUE(planner.PieceCollides(centre, {Motion::kTurnInPlace, kPi / 4, 0.0, {}}));
+  const Pose2 s(0, -12, kPi / 2), g(12, 0, 0.0);
+  const Se2PlanResult r = planner.Plan(s, g);
+  ASSERT_EQ(r.status, SearchStatus::kFound) << r.reason;
+  const auto report = testing::CheckPath(map, s, AsChecked(r.path), CheckerFor(planner));
+  EXPECT_TRUE(report.ok) << report.problem;
+  EXPECT_GT(r.path.Length(), 16.0);  // at least the straight-line distance of 16.97 m, less rounding
+  EXPECT_GT(r.path.Length(), 0.9 * std::hypot(12.0, 12.0));
+}
+
+TEST(Se2PlannerTest, BacksIntoTheCrosscutWithAMultiPointManeuver) {
+  // The same miner ends in the east crosscut facing back west, as before a slab cut: it
+  // cannot turn round in 6 m, so the maneuver must reverse (forward into the crossing, back
+  // into the crosscut). Coarser cells keep the test fast (the default finds it too).
+  const std::vector<Segment> map = planner_test::Crossing(6.0, 20.0);
+  Se2PlannerOptions o;
+  o.heading_bins = 36;
+  o.xy_resolution = 0.2;
+  const Se2Planner planner(map, Footprint::Rectangle(3.3, 10.0), o);
+  const Pose2 s(0, -12, kPi / 2), g(12, 0, kPi);
+  const Se2PlanResult r = planner.Plan(s, g);
+  ASSERT_EQ(r.status, SearchStatus::kFound) << r.reason;
+  const auto report = testing::CheckPath(map, s, AsChecked(r.path), CheckerFor(planner));
+  EXPECT_TRUE(report.ok) << report.problem;
+  EXPECT_GE(r.path.Reversals(), 1);
+  bool reverses = false;
+  for (const MotionPiece& p : r.path.pieces) reverses = reverses || DriveDirection(p.motion) < 0;
+  EXPECT_TRUE(reverses);
+  EXPECT_GT(r.path.Length(), 16.0);
+}
+
+TEST(Se2PlannerTest, EveryBadRequestGetsAStatusAndAReason) {
+  const std::vector<Segment> room = planner_test::Room(40, 30);
+  const Footprint miner = Footprint::Rectangle(3.3, 10.0);
+  const Se2Planner planner(room, miner, {});
+  const Pose2 good(20, 15, 0), other(28, 15, 0);
+  const auto expect = [](const Se2PlanResult& r, SearchStatus status, const std::string& words) {
+    EXPECT_EQ(r.status, status) << r.reason;
+    EXPECT_NE(r.reason.find(words), std::string::npos) << r.reason;
+    EXPECT_TRUE(r.path.pieces.empty());
+  };
+  expect(planner.Plan({NAN, 1, 0}, good), SearchStatus::kInvalidRequest, "start (nan, 1, 0) is not finite");
+  expect(planner.Plan(good, {1, 1, INFINITY}), SearchStatus::kInvalidRequest, "goal (1, 1, inf) is not finite");
+  expect(planner.Plan({50, 15, 0}, good), SearchStatus::kInvalidRequest, "start (50, 15, 0) is outside the map");
+  expect(planner.Plan({3, 15, 0}, good), SearchStatus::kInvalidRequest, "start (3, 15, 0) is in collision");
+  expect(planner.Plan(good, {20, 1, 0}), SearchStatus::kInvalidRequest, "goal (20, 1, 0) is in collision");
+  expect(Se2Planner({}, miner, {}).Plan(good, other), SearchStatus::kInvalidRequest, "the map has no segments");
+  expect(Se2Planner(room, Footprint::Rectangle(50, 60), {}).Plan(good, other), SearchStatus::kInvalidRequest,
+         "the footprint fits nowhere in the map");
+  Se2PlannerOptions bad;
+  bad.turn_radius = 0.0;
+  expect(Se2Planner(room, miner, bad).Plan(good, other), SearchStatus::kInvalidRequest, "turn_radius must be > 0");
+  expect(Se2Planner(room, Footprint{{{1, 1}, {2, 1}, {2, 2}}}, {}).Plan(good, other), SearchStatus::kInvalidRequest,
+         "does not contain the vehicle's origin");
+  // Two rooms with a wall between them: the 2-D heuristic knows before searching.
+  std::vector<Segment> two = room;
+  two.push_back({40, 0, 80, 0});
+  two.push_back({80, 0, 80, 30});
+  two.push_back({80, 30, 40, 30});
+  const Se2Planner split(two, miner, {});
+  expect(split.Plan(good, {60, 15, 0}), SearchStatus::kNoPath, "the goal is not reachable");
+  // A gap the inscribed circle passes but the polygon cannot turn into: the search runs dry.
+  std::vector<Segment> slot = planner_test::Room(40, 30);
+  slot.push_back({40, 13, 70, 13});
+  slot.push_back({40, 17, 70, 17});
+  slot.push_back({70, 13, 70, 17});
+  slot.erase(slot.begin() + 1);  // open the room's east wall
+  slot.push_back({40, 0, 40, 13});
+  slot.push_back({40, 17, 40, 30});
+  const Se2Planner narrow(slot, miner, {});
+  SearchLimits limits;
+  limits.max_expansions = 300000;
+  const Se2PlanResult dry = narrow.Plan(good, {60, 15, kPi / 2}, limits);
+  EXPECT_NE(dry.status, SearchStatus::kFound);
+  // Each bound stops the search and is named.
+  const Se2Planner crossing(planner_test::Crossing(6.0, 20.0), miner, {});
+  SearchLimits few;
+  few.max_expansions = 5;
+  expect(crossing.Plan({0, -12, kPi / 2}, {12, 0, 0}, few), SearchStatus::kExpansionLimit, "expansion_limit");
+  SearchLimits small;
+  small.max_states = 20;
+  expect(crossing.Plan({0, -12, kPi / 2}, {12, 0, 0}, small), SearchStatus::kMemoryLimit, "memory_limit");
+  SearchLimits deadline;
+  deadline.stop_requested = [] { return true; };
+  expect(crossing.Plan({0, -12, kPi / 2}, {12, 0, 0}, deadline), SearchStatus::kStopped, "stopped");
+}
+
+}  // namespace
+}  // namespace minenav
