@@ -153,7 +153,7 @@ FeaturePoseResult FeaturePoseEstimator::Estimate(const LadarScan& scan,
     model_sorted_in_sensor.push_back(model_in_sensor[i]);
     (model[i].type == FeatureType::kCorner ? result.predicted_corners : result.predicted_lines)++;
   }
-  const MatchResult match = MatchFeatures(sensed.features, model_sorted_in_sensor, options_.matching);
+  const FeatureMatchResult match = MatchFeatures(sensed.features, model_sorted_in_sensor, options_.matching);
   result.timings.matching = t0.Seconds();
   result.candidate_pairs = match.candidate_pairs;
   result.matches = static_cast<int>(match.pairs.size());
