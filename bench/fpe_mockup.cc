@@ -67,10 +67,10 @@ int main(int argc, char** argv) {
       if (draw == 0) {
         std::printf("%3zu %10.1f %10.1f %12.2f %12.1f %8d %6s  %s\n", k + 1, 100 * o.xy_error.x(),
                     100 * o.xy_error.y(), RadToDeg(o.heading_error), 100 * o.position_error, r.matches,
-                    o.converged ? "yes" : "no", o.converged ? "" : r.reason.c_str());
+                    o.converged ? "yes" : "no", o.converged ? "" : r.status.c_str());
         table.push_back({{"station", k + 1}, {"x_err_cm", 100 * o.xy_error.x()}, {"y_err_cm", 100 * o.xy_error.y()},
                          {"theta_err_deg", RadToDeg(o.heading_error)}, {"position_err_cm", 100 * o.position_error},
-                         {"converged", o.converged}, {"matches", r.matches}, {"reason", r.reason}});
+                         {"converged", o.converged}, {"matches", r.matches}, {"reason", r.status}});
       }
     }
   }

@@ -9,6 +9,7 @@
 
 #include "common/node/conversions.h"
 #include "common/node/event_log.h"
+#include "common/pose_estimate.h"
 #include "tests/temp_dir.h"
 
 namespace minenav::logger_test {
@@ -53,13 +54,11 @@ void WriteTestLog(const std::string& path, const TestRun& run) {
     t.utime = run.truth[k].utime;
     t.seq = static_cast<int64_t>(k);
     t.pose = run.truth[k].pose;
-    PoseEstimate e;
-    e.utime = run.estimates[k].utime;
-    e.scan_id = static_cast<int64_t>(k);
-    e.source = "ipe";
-    e.pose = run.estimates[k].pose;
-    e.converged = true;
-    e.status = "ok";
+    MatchResult match;
+    match.pose = run.estimates[k].pose;
+    match.converged = true;
+    match.status = "ok";
+    const PoseEstimate e = MakePoseEstimate(match, run.estimates[k].utime, static_cast<int64_t>(k), "ipe", 0.0);
     writer.WriteMessage("ODOMETRY", o.utime, ToLcm(o));
     writer.WriteMessage("SIM_TRUTH", t.utime, ToLcm(t));
     writer.WriteMessage("LADAR_SCAN", run.scans[k].utime, ToLcm(run.scans[k]));

@@ -67,7 +67,7 @@ InsertResult ContourMapper::InsertPreprocessed(PreprocessedScan scan, const Pose
     const PoseEstimationResult& e = out.estimation;
     std::ostringstream why;
     if (e.fit.num_pieces < pose_options.min_pieces)
-      why << "no overlap with the map: " << e.reason;
+      why << "no overlap with the map: " << e.status;
     else if (e.fit.MatchedFraction() < options_.min_overlap_fraction)
       why << "too little overlap with the map (" << 100.0 * e.fit.MatchedFraction() << "% of points match)";
     else if (TranslationDistance(initial, e.pose) > options_.max_correction_translation ||
@@ -116,7 +116,7 @@ InsertResult ContourMapper::InsertPreprocessed(PreprocessedScan scan, const Pose
   }
   out.accepted = true;
   std::ostringstream summary;
-  summary << (first ? "first scan (fixed)" : out.estimation.reason) << "; created " << out.expansion.created.size()
+  summary << (first ? "first scan (fixed)" : out.estimation.status) << "; created " << out.expansion.created.size()
           << ", extended " << out.expansion.extended.size() << ", connected " << out.expansion.connected.size()
           << ", spliced " << out.expansion.spliced.size() << " contours";
   if (out.disappearance.removed_length > 0.0) summary << "; removed " << out.disappearance.removed_length << " m seen through";

@@ -59,6 +59,7 @@
 #include "common/node/cpu_time.h"
 #include "common/node/node_runtime.h"
 #include "common/node/scan_odometry_sync.h"
+#include "common/pose_estimate.h"
 #include "render/svg_render.h"
 #include "mapper/carmen_session_options.h"
 #include "mapper/contour_map_io.h"
@@ -167,14 +168,10 @@ struct Publication {
 };
 
 pose_estimate_t RefusedPose(const LadarScan& scan, const Pose2& pose, const std::string& status) {
-  PoseEstimate e;
-  e.utime = scan.utime;
-  e.scan_id = scan.scan_id;
-  e.source = "clue";
-  e.pose = pose;
-  e.converged = false;
-  e.status = status;
-  return ToLcm(e);
+  MatchResult refused;
+  refused.pose = pose;
+  refused.status = status;
+  return ToLcm(MakePoseEstimate(refused, scan.utime, scan.scan_id, "clue", 0.0));
 }
 
 // The mapping session and what the process does with each result. One thread at a time:
@@ -193,18 +190,7 @@ class MapperCore {
     const double cpu0 = ThreadCpuSeconds();
     std::vector<Publication> out;
     const mapper::ScanResult r = session_.AddScan(s.scan, *s.odometry);
-    PoseEstimate e;
-    e.utime = s.scan.utime;
-    e.scan_id = s.scan.scan_id;
-    e.source = "clue";
-    e.pose = r.pose;
-    e.residual = r.rms_distance;
-    e.num_points = r.num_points;
-    e.num_inliers = r.num_matched;
-    e.iterations = r.iterations;
-    e.converged = r.accepted();
-    e.status = r.accepted() ? std::string("ok: ") + ToString(r.outcome) : r.reason;
-    e.compute_time = ThreadCpuSeconds() - cpu0;
+    const PoseEstimate e = MakePoseEstimate(r, s.scan.utime, s.scan.scan_id, "clue", ThreadCpuSeconds() - cpu0);
     out.push_back({p_.pose_channel, EncodeMessage(ToLcm(e))});
     const auto& st = session_.state();
     if (r.accepted()) {
@@ -213,8 +199,8 @@ class MapperCore {
                          << st.tracked << " tracked " << st.refused << " refused";
       status_ = {heartbeat_t::OK, ""};
     } else {
-      MINENAV_LOG(kWarn) << "scan " << s.scan.scan_id << " at " << s.scan.utime << ": refused: " << r.reason;
-      status_ = {heartbeat_t::WARN, "last scan refused: " + r.reason};
+      MINENAV_LOG(kWarn) << "scan " << s.scan.scan_id << " at " << s.scan.utime << ": refused: " << r.status;
+      status_ = {heartbeat_t::WARN, "last scan refused: " + r.status};
     }
     if (r.outcome == mapper::ScanOutcome::kInserted) out.push_back(MapMessage(s.scan.utime));
     if (!p_.checkpoint.empty() && p_.checkpoint_every > 0 && ++since_checkpoint_ >= p_.checkpoint_every) {

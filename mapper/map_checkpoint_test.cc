@@ -95,7 +95,7 @@ class MapCheckpointTest : public ::testing::Test {
   static void Add(MappingSession& s, size_t k) {
     const ScanResult r = s.AddScan(NoisyScan(kDrive[k], static_cast<unsigned>(k + 1), static_cast<int64_t>(k + 1) * 1000),
                                    Odometry(kDrive[k]));
-    ASSERT_TRUE(r.accepted()) << k << ": " << r.reason;
+    ASSERT_TRUE(r.accepted()) << k << ": " << r.status;
   }
   const ::minenav::testing::TempDir temp_{"map_checkpoint_test"};
   std::filesystem::path dir_;

@@ -52,7 +52,7 @@ namespace {
 std::string RefusalReason(const PoseEstimationResult& e, const Pose2& initial, const ContourMapperOptions& o) {
   std::ostringstream why;
   if (e.fit.num_pieces < o.pose.min_pieces)
-    why << "no overlap with the map: " << e.reason;
+    why << "no overlap with the map: " << e.status;
   else if (e.fit.MatchedFraction() < o.min_overlap_fraction)
     why << "too little overlap with the map (" << 100.0 * e.fit.MatchedFraction() << "% of points match)";
   else if (TranslationDistance(initial, e.pose) > o.max_correction_translation ||
@@ -65,9 +65,18 @@ std::string RefusalReason(const PoseEstimationResult& e, const Pose2& initial, c
 }
 
 void CopyFit(const PoseEstimationResult& e, ScanResult* out) {
-  out->num_matched = e.fit.num_matched;
+  out->num_inliers = e.num_inliers;
   out->iterations = e.iterations;
-  out->rms_distance = std::sqrt(e.fit.MeanSquaredDistance());
+  out->residual = e.residual;
+}
+
+// An accepted scan reports "ok: inserted" or "ok: tracked" as its status (what POSE
+// carries); what the estimate and the insert said is kept as the summary.
+void Accept(ScanOutcome outcome, std::string summary, ScanResult* out) {
+  out->outcome = outcome;
+  out->converged = true;
+  out->status = std::string("ok: ") + ToString(outcome);
+  out->summary = std::move(summary);
 }
 
 }  // namespace
@@ -78,11 +87,10 @@ ScanResult MappingSession::Track(PreprocessedScan scan, ScanResult out) const {
   CopyFit(e, &out);
   if (std::string why = RefusalReason(e, out.initial, options_.mapper); !why.empty()) {
     out.pose = out.initial;
-    out.reason = std::move(why);
+    out.status = std::move(why);
     return out;
   }
-  out.outcome = ScanOutcome::kTracked;
-  out.reason = e.reason;
+  Accept(ScanOutcome::kTracked, e.status, &out);
   return out;
 }
 
@@ -92,12 +100,14 @@ ScanResult MappingSession::AddScan(const LadarScan& scan, const Pose2& odometry)
   out.scan_id = scan.scan_id;
   out.initial = state_.has_anchor ? state_.anchor_pose * Between(state_.anchor_odometry, odometry) : odometry;
   out.pose = out.initial;
+  std::string invalid;
   if (!std::isfinite(odometry.x) || !std::isfinite(odometry.y) || !std::isfinite(odometry.theta)) {
-    out.reason = "odometry pose is not finite";
+    invalid = "odometry pose is not finite";
   } else if (const std::string why = ValidateScan(scan); !why.empty()) {
-    out.reason = "invalid scan: " + why;
+    invalid = "invalid scan: " + why;
   }
-  if (!out.reason.empty()) {
+  if (!invalid.empty()) {
+    out.status = std::move(invalid);
     ++state_.refused;
     return out;
   }
@@ -119,7 +129,7 @@ ScanResult MappingSession::AddScan(const LadarScan& scan, const Pose2& odometry)
     // A loaded map and no scan yet: localise first, then this scan anchors the frame at
     // its estimate (the mapper keeps its first scan where it is given).
     if (out.num_points < options_.mapper.min_scan_points) {
-      out.reason = "too few usable points (" + std::to_string(out.num_points) + " < " +
+      out.status = "too few usable points (" + std::to_string(out.num_points) + " < " +
                    std::to_string(options_.mapper.min_scan_points) + ")";
       ++state_.refused;
       return out;
@@ -134,7 +144,7 @@ ScanResult MappingSession::AddScan(const LadarScan& scan, const Pose2& odometry)
 
   if (!insert) {
     if (out.num_points < options_.mapper.min_scan_points) {
-      out.reason = "too few usable points (" + std::to_string(out.num_points) + " < " +
+      out.status = "too few usable points (" + std::to_string(out.num_points) + " < " +
                    std::to_string(options_.mapper.min_scan_points) + ")";
       ++state_.refused;
       return out;
@@ -155,14 +165,14 @@ ScanResult MappingSession::AddScan(const LadarScan& scan, const Pose2& odometry)
 
   const InsertResult r = mapper_.InsertPreprocessed(std::move(pre), out.initial);
   out.pose = r.pose;
-  out.reason = r.reason;
   CopyFit(r.estimation, &out);
   if (!r.accepted) {
     out.pose = out.initial;
+    out.status = r.reason;
     ++state_.refused;
     return out;
   }
-  out.outcome = ScanOutcome::kInserted;
+  Accept(ScanOutcome::kInserted, r.reason, &out);
   out.scan_index = r.scan_index;
   ++state_.inserted;
   state_.has_anchor = true;

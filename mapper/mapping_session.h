@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "common/file_io.h"
+#include "common/match_result.h"
 #include "common/pose2.h"
 #include "common/scan.h"
 #include "mapper/contour_mapper.h"
@@ -48,18 +49,19 @@ std::string ValidateOptions(const MappingSessionOptions& options);
 enum class ScanOutcome { kInserted, kTracked, kRefused };
 const char* ToString(ScanOutcome outcome);
 
-struct ScanResult {
+// One scan's outcome. Its core (common/match_result.h) is what the contour_mapper process
+// publishes on POSE: pose = the estimate (the initial pose when refused); converged = the
+// scan was accepted (inserted or tracked); status = "ok: inserted", "ok: tracked" or why it
+// was refused; num_points = usable points after preprocessing; num_inliers = points
+// matching the contours at the estimate; iterations = of the pose estimation; residual = m,
+// RMS distance to the matched contours at the estimate; covariance stays zero.
+struct ScanResult : MatchResult {
   ScanOutcome outcome = ScanOutcome::kRefused;
-  std::string reason;       // why refused, else a one-line summary
+  std::string summary;      // accepted: what the estimate and the insert did; else empty
   int64_t utime = 0;        // the scan's
   int64_t scan_id = 0;
   Pose2 initial;            // world_T_vehicle the estimate started from
-  Pose2 pose;               // the estimate (the initial pose when refused before estimation)
   int scan_index = -1;      // index in mapper().scans() when inserted
-  int num_points = 0;       // usable points after preprocessing
-  int num_matched = 0;      // points matching the contours at the estimate
-  int iterations = 0;       // pose-estimation iterations
-  double rms_distance = 0;  // m, RMS distance to the matched contours at the estimate
   bool refined = false;     // a periodic concurrent refinement ran after this scan
   ConcurrentRefinementResult refinement;
   bool accepted() const { return outcome != ScanOutcome::kRefused; }

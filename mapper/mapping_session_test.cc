@@ -74,7 +74,7 @@ TEST(MappingSessionTest, DefaultsInsertEveryScanChainingOdometry) {
   for (size_t k = 0; k < kStations.size(); ++k) {
     const LadarScan scan = NoisyScan(kStations[k], static_cast<unsigned>(k + 1), 1'000'000 * static_cast<int64_t>(k + 1));
     const ScanResult r = session.AddScan(scan, odo[k]);
-    ASSERT_EQ(r.outcome, ScanOutcome::kInserted) << "scan " << k << ": " << r.reason;
+    ASSERT_EQ(r.outcome, ScanOutcome::kInserted) << "scan " << k << ": " << r.status;
     EXPECT_EQ(r.scan_index, static_cast<int>(k));
     const Pose2 initial = last ? last->first * Between(last->second, odo[k]) : odo[k];
     const InsertResult ref = reference.InsertScan(scan, initial);
@@ -108,7 +108,7 @@ TEST(MappingSessionTest, InsertsOnlyAfterEnoughMotionAndTracksTheRest) {
   int inserted = 0, tracked = 0;
   for (size_t k = 0; k < truth.size(); ++k) {
     const ScanResult r = session.AddScan(NoisyScan(truth[k], static_cast<unsigned>(k + 1), static_cast<int64_t>(k + 1)), odo[k]);
-    ASSERT_TRUE(r.accepted()) << "scan " << k << ": " << r.reason;
+    ASSERT_TRUE(r.accepted()) << "scan " << k << ": " << r.status;
     if (r.outcome == ScanOutcome::kInserted) {
       ++inserted;
       if (k > 0) {
@@ -138,7 +138,7 @@ TEST(MappingSessionTest, RefinesEveryNInsertsAndKeepsTheAnchorOnTheRefinedPose) 
   MappingSession session(o);
   for (size_t k = 0; k < 4; ++k) {
     const ScanResult r = session.AddScan(NoisyScan(kStations[k], static_cast<unsigned>(k + 1), static_cast<int64_t>(k)), odo[k]);
-    ASSERT_EQ(r.outcome, ScanOutcome::kInserted) << r.reason;
+    ASSERT_EQ(r.outcome, ScanOutcome::kInserted) << r.status;
     EXPECT_EQ(r.refined, k % 2 == 1) << k;
     if (r.refined) {
       EXPECT_GE(r.refinement.total_error.size(), 1u);
@@ -168,7 +168,7 @@ TEST(MappingSessionTest, AStoppedPeriodicRefinementLeavesTheScanInsertedAndStill
   for (size_t k = 0; k < 3; ++k) {
     stop = k == 2;  // the third insert triggers the refinement, and the stop is requested
     const ScanResult r = session.AddScan(NoisyScan(kStations[k], static_cast<unsigned>(k + 1), static_cast<int64_t>(k)), odo[k]);
-    ASSERT_EQ(r.outcome, ScanOutcome::kInserted) << r.reason;
+    ASSERT_EQ(r.outcome, ScanOutcome::kInserted) << r.status;
     EXPECT_EQ(r.refined, k == 2);
     if (k == 2) {
       EXPECT_TRUE(r.refinement.stopped) << r.refinement.reason;
@@ -204,33 +204,33 @@ TEST(MappingSessionTest, RefusesBadScansLeavesTheMapAndGoesOn) {
   far.utime = 10;
   ScanResult r = session.AddScan(far, Pose2(102, 101, 0));
   EXPECT_EQ(r.outcome, ScanOutcome::kRefused);
-  EXPECT_NE(r.reason.find("overlap"), std::string::npos) << r.reason;
+  EXPECT_NE(r.status.find("overlap"), std::string::npos) << r.status;
   unchanged();
   // A wildly wrong initial estimate: odometry 120 degrees and metres off.
   r = session.AddScan(NoisyScan(Pose2(10, 6, 0), 20, 11), odo[2] * Pose2(-6, 3, 2.1));
-  EXPECT_EQ(r.outcome, ScanOutcome::kRefused) << r.reason;
+  EXPECT_EQ(r.outcome, ScanOutcome::kRefused) << r.status;
   unchanged();
   // All points out of range.
   LadarScan blank = NoisyScan(kStations[3], 21, 12);
   for (float& v : blank.ranges) v = 1000.0f;
   r = session.AddScan(blank, odo[3]);
   EXPECT_EQ(r.outcome, ScanOutcome::kRefused);
-  EXPECT_NE(r.reason.find("too few usable points"), std::string::npos) << r.reason;
+  EXPECT_NE(r.status.find("too few usable points"), std::string::npos) << r.status;
   unchanged();
   // A malformed scan and a non-finite odometry pose.
   LadarScan bad = NoisyScan(kStations[3], 22, 13);
   bad.angle_step = 0;
   r = session.AddScan(bad, odo[3]);
-  EXPECT_NE(r.reason.find("invalid scan"), std::string::npos) << r.reason;
+  EXPECT_NE(r.status.find("invalid scan"), std::string::npos) << r.status;
   r = session.AddScan(NoisyScan(kStations[3], 23, 14), Pose2(std::nan(""), 0, 0));
-  EXPECT_NE(r.reason.find("not finite"), std::string::npos) << r.reason;
+  EXPECT_NE(r.status.find("not finite"), std::string::npos) << r.status;
   unchanged();
   EXPECT_EQ(session.state().refused, 5);
   // A scan with a hole still goes in; the session goes on.
   LadarScan holey = NoisyScan(kStations[3], 24, 15);
   for (size_t i = 100; i < 300; ++i) holey.ranges[i] = std::nanf("");
   r = session.AddScan(holey, odo[3]);
-  EXPECT_EQ(r.outcome, ScanOutcome::kInserted) << r.reason;
+  EXPECT_EQ(r.outcome, ScanOutcome::kInserted) << r.status;
   EXPECT_LT(TranslationDistance(r.pose, kStations[3]), 0.02);
 }
 
@@ -241,7 +241,7 @@ TEST(MappingSessionTest, StartsFromALoadedMap) {
   const int before = session.map().NumContours();
   const Pose2 truth(9, 9.5, -0.5);
   const ScanResult r = session.AddScan(NoisyScan(truth, 3, 1), Pose2(9.25, 9.3, -0.45));
-  ASSERT_EQ(r.outcome, ScanOutcome::kInserted) << r.reason;
+  ASSERT_EQ(r.outcome, ScanOutcome::kInserted) << r.status;
   EXPECT_LT(TranslationDistance(r.pose, truth), 0.02);
   EXPECT_LT(HeadingDistance(r.pose, truth), DegToRad(0.2));
   EXPECT_GE(session.map().NumContours(), before);

@@ -108,7 +108,7 @@ ScanFit MeasureScanFit(const PreprocessedScan& scan, const Pose2& pose, const Co
   fit.matched_length = MatchedLength(pieces, pose);
   fit.num_pieces = static_cast<int>(pieces.size());
   fit.num_points = corr.num_points;
-  fit.num_matched = corr.num_matched;
+  fit.num_inliers = corr.num_matched;
   return fit;
 }
 
@@ -139,6 +139,14 @@ Pose2 SearchHeading(const PreprocessedScan& scan, const Pose2& initial, const Co
 
 namespace {
 
+// The fit at the result's pose, and the core's summary of it.
+void SetFit(const ScanFit& fit, PoseEstimationResult* out) {
+  out->fit = fit;
+  out->num_points = fit.num_points;
+  out->num_inliers = fit.num_inliers;
+  out->residual = std::sqrt(fit.MeanSquaredDistance());
+}
+
 // The thesis estimator (4.3.3) from one start.
 PoseEstimationResult EstimateFrom(const PreprocessedScan& scan, const Pose2& initial, const ContourMap& map,
                                   const PoseEstimationOptions& o) {
@@ -151,9 +159,9 @@ PoseEstimationResult EstimateFrom(const PreprocessedScan& scan, const Pose2& ini
     const ScanCorrespondence corr = CorrespondScan(scan, out.pose, map, threshold);
     const std::vector<PosePiece> pieces = CollectPieces(scan, corr, map);
     if (static_cast<int>(pieces.size()) < o.min_pieces) {
-      out.reason = "too few correspondences (" + std::to_string(pieces.size()) + " pieces within " +
+      out.status = "too few correspondences (" + std::to_string(pieces.size()) + " pieces within " +
                    std::to_string(threshold) + " m)";
-      out.fit = MeasureScanFit(scan, out.pose, map, threshold);
+      SetFit(MeasureScanFit(scan, out.pose, map, threshold), &out);
       return out;
     }
     const double length = std::max(1e-9, MatchedLength(pieces, out.pose));
@@ -197,21 +205,21 @@ PoseEstimationResult EstimateFrom(const PreprocessedScan& scan, const Pose2& ini
     if (at_final) {
       if (grad_xy < o.gradient_tolerance && grad_t < o.gradient_tolerance) {
         out.converged = true;
-        out.reason = "gradient small";
+        out.status = "gradient small";
       } else if (small_step_xy && small_step_t) {
         out.converged = true;
-        out.reason = "step (lambda) small";
+        out.status = "step (lambda) small";
       } else if (TranslationDistance(before, out.pose) < o.min_translation_change &&
                  HeadingDistance(before, out.pose) < o.min_rotation_change) {
         out.converged = true;
-        out.reason = "pose change small";
+        out.status = "pose change small";
       }
       if (out.converged) break;
     }
     threshold = std::max(o.final_threshold, threshold * o.threshold_factor);
   }
-  if (!out.converged) out.reason = "iteration limit";
-  out.fit = MeasureScanFit(scan, out.pose, map, out.threshold);
+  if (!out.converged) out.status = "iteration limit";
+  SetFit(MeasureScanFit(scan, out.pose, map, out.threshold), &out);
   return out;
 }
 
@@ -227,7 +235,7 @@ PoseEstimationResult EstimatePose(const PreprocessedScan& scan, const Pose2& ini
   // initial heading already explains is never pulled away by a look-alike heading.
   PoseEstimationResult from_searched = EstimateFrom(scan, searched, map, o);
   const auto better = [](const PoseEstimationResult& a, const PoseEstimationResult& b) {
-    if (a.fit.num_matched != b.fit.num_matched) return a.fit.num_matched > b.fit.num_matched;
+    if (a.fit.num_inliers != b.fit.num_inliers) return a.fit.num_inliers > b.fit.num_inliers;
     return a.fit.MeanSquaredDistance() < b.fit.MeanSquaredDistance();
   };
   return better(from_searched, from_initial) ? from_searched : from_initial;

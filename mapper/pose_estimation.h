@@ -12,6 +12,7 @@
 
 #include <string>
 
+#include "common/match_result.h"
 #include "common/pose2.h"
 #include "mapper/contour_map.h"
 #include "mapper/correspondence.h"
@@ -60,19 +61,20 @@ struct ScanFit {
   double matched_length = 0.0;  // m, Σ |l| over the pieces
   int num_pieces = 0;
   int num_points = 0;
-  int num_matched = 0;
+  int num_inliers = 0;          // points with a contour within the threshold
   // m^2, F / matched_length: mean squared distance along the matched scan.
   double MeanSquaredDistance() const { return matched_length > 0.0 ? error / matched_length : 0.0; }
-  double MatchedFraction() const { return num_points > 0 ? static_cast<double>(num_matched) / num_points : 0.0; }
+  double MatchedFraction() const { return num_points > 0 ? static_cast<double>(num_inliers) / num_points : 0.0; }
 };
 ScanFit MeasureScanFit(const PreprocessedScan& scan, const Pose2& world_T_vehicle, const ContourMap& map,
                        double threshold);
 
-struct PoseEstimationResult {
-  Pose2 pose;              // world_T_vehicle
-  bool converged = false;  // ended on a tolerance, not on the iteration limit or a failure
-  std::string reason;      // which termination condition, or why no estimate
-  int iterations = 0;
+// The core (common/match_result.h) as this estimator fills it: pose = world_T_vehicle;
+// converged = ended on a tolerance, not on the iteration limit or a failure; status = which
+// termination condition, or why no estimate; num_points, num_inliers and residual (the RMS
+// distance, sqrt of fit.MeanSquaredDistance()) summarise `fit`; covariance stays zero (the
+// line searches give none).
+struct PoseEstimationResult : MatchResult {
   double threshold = 0.0;  // m, correspondence threshold at the end
   ScanFit fit;             // at `pose` under `threshold`
 };

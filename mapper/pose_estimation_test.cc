@@ -64,8 +64,8 @@ TEST_P(PoseEstimationRecovers, ExactScan) {
   const Case c = GetParam();
   const PreprocessedScan scan = PreprocessScan(MakeScan(SmallRoomWorld(), c.truth), {});
   const PoseEstimationResult r = EstimatePose(scan, c.start, map);
-  EXPECT_TRUE(r.converged) << r.reason;
-  EXPECT_LT(TranslationDistance(r.pose, c.truth), 1e-3) << r.pose << " " << r.reason << " it " << r.iterations;
+  EXPECT_TRUE(r.converged) << r.status;
+  EXPECT_LT(TranslationDistance(r.pose, c.truth), 1e-3) << r.pose << " " << r.status << " it " << r.iterations;
   EXPECT_LT(HeadingDistance(r.pose, c.truth), DegToRad(0.01));
 }
 
@@ -83,7 +83,7 @@ TEST(PoseEstimationTest, NoisyScanWithinACentimetre) {
   spec.num_points = 2048;
   const PreprocessedScan scan = PreprocessScan(MakeScan(SmallRoomWorld(), truth, spec), {});
   const PoseEstimationResult r = EstimatePose(scan, Pose2(9.33, 8.2, 0.2 + DegToRad(3.3)), map);
-  EXPECT_LT(TranslationDistance(r.pose, truth), 0.01) << r.pose << " " << r.reason;
+  EXPECT_LT(TranslationDistance(r.pose, truth), 0.01) << r.pose << " " << r.status;
   EXPECT_LT(HeadingDistance(r.pose, truth), DegToRad(0.1));
   EXPECT_GT(r.fit.MatchedFraction(), 0.9);
 }
@@ -113,7 +113,7 @@ TEST(PoseEstimationTest, HeadingSearchWidensTheBasinForLaggingOdometry) {
     const Pose2 seeded = SearchHeading(scan, start, map, searching);
     EXPECT_LT(HeadingDistance(seeded, truth), DegToRad(3.0)) << error_deg << " deg: " << seeded;
     const PoseEstimationResult r = EstimatePose(scan, start, map, searching);
-    EXPECT_LT(TranslationDistance(r.pose, truth), 1e-3) << error_deg << " deg: " << r.pose << " " << r.reason;
+    EXPECT_LT(TranslationDistance(r.pose, truth), 1e-3) << error_deg << " deg: " << r.pose << " " << r.status;
     EXPECT_LT(HeadingDistance(r.pose, truth), DegToRad(0.01)) << error_deg << " deg";
     if (HeadingDistance(EstimatePose(scan, start, map, plain).pose, truth) > DegToRad(1.0)) ++plain_lost;
   }
@@ -135,7 +135,7 @@ TEST(PoseEstimationTest, NoOverlapIsReportedNotGuessed) {
       PreprocessScan(MakeScan(testing::Rectangle(100, 100, 104, 103), Pose2(102, 101, 0)), {});
   const PoseEstimationResult r = EstimatePose(scan, Pose2(102, 101, 0), map);
   EXPECT_FALSE(r.converged);
-  EXPECT_NE(r.reason.find("too few correspondences"), std::string::npos) << r.reason;
+  EXPECT_NE(r.status.find("too few correspondences"), std::string::npos) << r.status;
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include "common/node/bus.h"
 #include "common/node/conversions.h"
 #include "common/node/cpu_time.h"
+#include "common/pose_estimate.h"
 #include "minenav/heartbeat_t.hpp"
 #include "minenav/ladar_scan_t.hpp"
 #include "minenav/odometry_t.hpp"
@@ -84,23 +85,21 @@ void ScanEstimationNode::Process(const SyncedScan& synced) {
   }
   std::string why;
   const double cpu0 = ThreadCpuSeconds();
-  std::optional<PoseEstimate> e = estimate_(scan, initial, &why);
+  const std::optional<MatchResult> match = estimate_(scan, initial, &why);
   const double cpu_seconds = ThreadCpuSeconds() - cpu0;
-  if (!e) {
+  if (!match) {
     ++skipped_;
     MINENAV_LOG(kWarn) << "scan " << scan.scan_id << ": " << why << "; skipped";
     runtime_.SetStatus(heartbeat_t::WARN, why);
     return;
   }
-  if (e->converged) chain_.Trust(e->pose, odometry);
-  Answer(scan, initial, std::move(*e), cpu_seconds);
+  if (match->converged) chain_.Trust(match->pose, odometry);
+  Answer(scan, initial, *match, cpu_seconds);
 }
 
-void ScanEstimationNode::Answer(const LadarScan& scan, const Pose2& initial, PoseEstimate e, double cpu_seconds) {
-  e.utime = scan.utime;
-  e.scan_id = scan.scan_id;
-  e.source = source_;
-  e.compute_time = cpu_seconds;
+void ScanEstimationNode::Answer(const LadarScan& scan, const Pose2& initial, const MatchResult& match,
+                                double cpu_seconds) {
+  const PoseEstimate e = MakePoseEstimate(match, scan.utime, scan.scan_id, source_, cpu_seconds);
   ++estimated_;
   Publish(runtime_.bus(), options_.pose_channel, ToLcm(e));
   if (e.converged) {
@@ -118,10 +117,10 @@ void ScanEstimationNode::Finish() {
   Drain(true);
   if (estimate_all_ && !deferred_scans_.empty()) {
     const double cpu0 = ThreadCpuSeconds();
-    std::vector<PoseEstimate> results = estimate_all_(deferred_scans_, deferred_initial_);
+    const std::vector<MatchResult> results = estimate_all_(deferred_scans_, deferred_initial_);
     const double per_scan = (ThreadCpuSeconds() - cpu0) / static_cast<double>(deferred_scans_.size());
     for (size_t k = 0; k < results.size() && k < deferred_scans_.size(); ++k)
-      Answer(deferred_scans_[k], deferred_initial_[k], std::move(results[k]), per_scan);
+      Answer(deferred_scans_[k], deferred_initial_[k], results[k], per_scan);
     if (!results.empty() && !results.back().converged)
       MINENAV_LOG(kWarn) << "estimate of the whole sequence: " << results.back().status;
   }

@@ -11,7 +11,7 @@
 //   DeclareScanEstimationOptions(schema, &o, {"odometry", "chained"});
 //   ... parse, runtime.Start() ...
 //   ScanEstimationNode node(runtime, o, "fpe", [&](const LadarScan& scan, const Pose2& initial,
-//                                                  std::string* why) -> std::optional<PoseEstimate> {...});
+//                                                  std::string* why) -> std::optional<MatchResult> {...});
 //   return node.Run();
 
 #include <functional>
@@ -23,8 +23,8 @@
 #include "common/file_io.h"
 #include "common/node/node_runtime.h"
 #include "common/node/scan_odometry_sync.h"
+#include "common/match_result.h"
 #include "common/odometry_chain.h"
-#include "common/pose_estimate.h"
 #include "common/scan.h"
 
 namespace minenav {
@@ -49,12 +49,13 @@ void DeclareScanEstimationOptions(ConfigSchema& schema, ScanEstimationOptions* o
 class ScanEstimationNode {
  public:
   // Estimates one scan from `initial`. nullopt = not estimated (e.g. no map yet): *why
-  // says why. The estimate's utime, scan_id, source and compute_time are filled in here.
+  // says why. The node makes the published estimate of it (MakePoseEstimate) with the
+  // scan's utime and id, the node's source and the CPU time the call took.
   using EstimateFn =
-      std::function<std::optional<PoseEstimate>(const LadarScan& scan, const Pose2& initial, std::string* why)>;
+      std::function<std::optional<MatchResult>(const LadarScan& scan, const Pose2& initial, std::string* why)>;
   // Estimates a whole sequence at once (IPE's simultaneous mode, batch only).
   using EstimateAllFn =
-      std::function<std::vector<PoseEstimate>(const std::vector<LadarScan>& scans, const std::vector<Pose2>& initial)>;
+      std::function<std::vector<MatchResult>(const std::vector<LadarScan>& scans, const std::vector<Pose2>& initial)>;
 
   // Subscribes on runtime.bus() (call after runtime.Start()). Throws UsageError for
   // --poses-out without --log.
@@ -75,7 +76,7 @@ class ScanEstimationNode {
  private:
   void Process(const SyncedScan& synced);
   void Drain(bool at_shutdown);
-  void Answer(const LadarScan& scan, const Pose2& initial, PoseEstimate estimate, double cpu_seconds);
+  void Answer(const LadarScan& scan, const Pose2& initial, const MatchResult& match, double cpu_seconds);
   void Finish();
 
   NodeRuntime& runtime_;

@@ -59,8 +59,8 @@ struct Harness {
 };
 
 // The estimator under test says the vehicle is 0.5 m ahead of the initial estimate.
-std::optional<PoseEstimate> HalfMetreAhead(const LadarScan&, const Pose2& initial, std::string*) {
-  PoseEstimate e;
+std::optional<MatchResult> HalfMetreAhead(const LadarScan&, const Pose2& initial, std::string*) {
+  MatchResult e;
   e.pose = initial * Pose2(0.5, 0.0, 0.0);
   e.converged = true;
   e.status = "ok";
@@ -109,7 +109,7 @@ TEST(ScanEstimationNodeTest, ASkippedScanIsCountedAndShownInTheHeartbeat) {
   Harness h("chained");
   ScanEstimationNode node(*h.runtime, h.options, "test", [](const LadarScan&, const Pose2&, std::string* why) {
     *why = "no map yet";
-    return std::optional<PoseEstimate>();
+    return std::optional<MatchResult>();
   });
   h.Feed(0, 0.0);
   EXPECT_TRUE(h.bus->PublishedOn("POSE_TEST").empty());

@@ -136,9 +136,9 @@ bool BinaryConsistent(const Feature& s1, const Feature& m1, const Feature& s2, c
   return std::abs(ls.SignedDistance(cs.position) - lm.SignedDistance(cm.position)) <= o.bindisterr;
 }
 
-MatchResult MatchFeatures(const std::vector<Feature>& sensed, const std::vector<Feature>& model,
-                          const MatchingOptions& o) {
-  MatchResult result;
+FeatureMatchResult MatchFeatures(const std::vector<Feature>& sensed, const std::vector<Feature>& model,
+                                 const MatchingOptions& o) {
+  FeatureMatchResult result;
   Search s{sensed, model, o, {}, {}, {}, {}, {}, {}};
   for (int i = 0; i < static_cast<int>(sensed.size()); ++i) {
     for (int j = 0; j < static_cast<int>(model.size()); ++j) {

@@ -42,7 +42,8 @@ struct FeaturePair {
   int model = 0;   // index into the model list
 };
 
-struct MatchResult {
+// The feature pairing of the matching stage (2.1.5); not a pose: see FeaturePoseResult.
+struct FeatureMatchResult {
   std::vector<FeaturePair> pairs;  // the largest consistent set, in sweep order
   int candidate_pairs = 0;         // pairs that passed the unary constraints
   int search_nodes = 0;
@@ -54,7 +55,7 @@ struct MatchResult {
 bool UnaryConsistent(const Feature& sensed, const Feature& model, const MatchingOptions& options);
 bool BinaryConsistent(const Feature& sensed1, const Feature& model1, const Feature& sensed2,
                       const Feature& model2, const MatchingOptions& options);
-MatchResult MatchFeatures(const std::vector<Feature>& sensed, const std::vector<Feature>& model,
-                          const MatchingOptions& options = {});
+FeatureMatchResult MatchFeatures(const std::vector<Feature>& sensed, const std::vector<Feature>& model,
+                                 const MatchingOptions& options = {});
 
 }  // namespace minenav

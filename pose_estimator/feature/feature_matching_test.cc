@@ -45,7 +45,7 @@ Scene MakeScene(const std::vector<Segment>& map_segments, const std::vector<Segm
 
 // A match is right if the sensed feature, moved into the map with the true pose, lies on
 // its model feature.
-int CountWrong(const Scene& s, const MatchResult& r, const Pose2& truth) {
+int CountWrong(const Scene& s, const FeatureMatchResult& r, const Pose2& truth) {
   int wrong = 0;
   for (const FeaturePair& p : r.pairs) {
     const Feature sw = TransformFeature(s.sensed[static_cast<size_t>(p.sensed)], truth.inverse());
@@ -104,7 +104,7 @@ TEST(FeatureMatching, MatchesEverySensedFeatureOfACleanScanCorrectly) {
   const Pose2 truth(3, 3.5, 0.2);
   const Pose2 guess(3.4, 3.2, 0.25);
   const Scene s = MakeScene(world, world, truth, guess);
-  const MatchResult r = MatchFeatures(s.sensed, s.model);
+  const FeatureMatchResult r = MatchFeatures(s.sensed, s.model);
   EXPECT_TRUE(r.search_complete);
   EXPECT_EQ(CountWrong(s, r, truth), 0);
   EXPECT_GE(r.pairs.size(), s.sensed.size() - 1);
@@ -119,7 +119,7 @@ TEST(FeatureMatching, LargeHeadingErrorNeedsOnlyAWideAngerr) {
   MatchingOptions o;
   EXPECT_LT(MatchFeatures(s.sensed, s.model, o).pairs.size(), 3u);  // angerr 5 deg: lost
   o.angerr = DegToRad(45);
-  const MatchResult r = MatchFeatures(s.sensed, s.model, o);
+  const FeatureMatchResult r = MatchFeatures(s.sensed, s.model, o);
   EXPECT_EQ(CountWrong(s, r, truth), 0);
   EXPECT_GE(r.pairs.size(), 8u);
 }
@@ -130,7 +130,7 @@ TEST(FeatureMatching, ClutterNotInTheMapStaysUnmatched) {
   AddBox(&world, 2, 1, 3, 1.8);  // a machine parked in the room
   const Pose2 truth(5, 5, 1.0);
   const Scene s = MakeScene(map, world, truth, Pose2(5.3, 4.6, 1.05), 0.05);
-  const MatchResult r = MatchFeatures(s.sensed, s.model);
+  const FeatureMatchResult r = MatchFeatures(s.sensed, s.model);
   EXPECT_EQ(CountWrong(s, r, truth), 0);
   EXPECT_GE(r.pairs.size(), 8u);
 }

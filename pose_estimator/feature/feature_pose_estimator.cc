@@ -85,26 +85,13 @@ FeaturePoseEstimator::FeaturePoseEstimator(const std::vector<Segment>& map,
   dropped_ = build.dropped;
 }
 
-PoseEstimate ToPoseEstimate(const FeaturePoseResult& r) {
-  PoseEstimate e;
-  e.pose = r.pose;
-  e.covariance = r.covariance;
-  e.residual = r.residual;
-  e.num_points = r.num_points;
-  e.num_inliers = r.used;
-  e.iterations = r.iterations;
-  e.converged = r.converged;
-  e.status = r.reason;
-  return e;
-}
-
 FeaturePoseResult FeaturePoseEstimator::Estimate(const LadarScan& scan,
                                                  const Pose2& initial_map_T_vehicle) const {
   FeaturePoseResult result;
   result.pose = initial_map_T_vehicle;
   const std::string invalid = ValidateScan(scan);
   if (!invalid.empty()) {
-    result.reason = "invalid scan: " + invalid;
+    result.status = "invalid scan: " + invalid;
     return result;
   }
   const Pose2 initial_sensor = initial_map_T_vehicle * scan.sensor_offset;
@@ -153,22 +140,22 @@ FeaturePoseResult FeaturePoseEstimator::Estimate(const LadarScan& scan,
     model_sorted_in_sensor.push_back(model_in_sensor[i]);
     (model[i].type == FeatureType::kCorner ? result.predicted_corners : result.predicted_lines)++;
   }
-  const MatchResult match = MatchFeatures(sensed.features, model_sorted_in_sensor, options_.matching);
+  const FeatureMatchResult match = MatchFeatures(sensed.features, model_sorted_in_sensor, options_.matching);
   result.timings.matching = t0.Seconds();
   result.candidate_pairs = match.candidate_pairs;
   result.matches = static_cast<int>(match.pairs.size());
   result.search_complete = match.search_complete;
 
   if (sensed.features.empty()) {
-    result.reason = "no features in the scan";
+    result.status = "no features in the scan";
     return result;
   }
   if (model.empty()) {
-    result.reason = "no map features predicted";
+    result.status = "no map features predicted";
     return result;
   }
   if (result.matches == 0) {
-    result.reason = "no consistent matches";
+    result.status = "no consistent matches";
     return result;
   }
 
@@ -180,18 +167,18 @@ FeaturePoseResult FeaturePoseEstimator::Estimate(const LadarScan& scan,
   const MinimizationResult min = MinimizeFeatureError(pairs, initial_sensor, options_.minimization);
   result.timings.minimization = t0.Seconds();
   result.iterations = min.iterations;
-  result.used = min.used;
+  result.num_inliers = min.used;
   result.residual = min.rms_distance;
   const Pose2 sensor_T_vehicle = scan.sensor_offset.inverse();
   result.pose = min.pose * sensor_T_vehicle;
   result.covariance = VehicleCovariance(min.covariance, min.pose, sensor_T_vehicle);
   result.converged = min.converged;
-  result.reason = min.reason;
+  result.status = min.reason;
   // Too few correspondences: still report what they observe (pose and covariance), but
   // a set this small is too easily consistent by chance to be trusted.
-  if (result.converged && result.used < options_.min_matches) {
+  if (result.converged && result.num_inliers < options_.min_matches) {
     result.converged = false;
-    result.reason = "only " + std::to_string(result.used) + " consistent correspondences (need " +
+    result.status = "only " + std::to_string(result.num_inliers) + " consistent correspondences (need " +
                     std::to_string(options_.min_matches) + ")";
   }
   // The match assumed the pose within poserr and angerr of the estimate; a result beyond
@@ -201,7 +188,7 @@ FeaturePoseResult FeaturePoseEstimator::Estimate(const LadarScan& scan,
   const auto& m = options_.matching;
   if (result.converged && (moved > m.poserr + m.disterr || turned > m.angerr + m.binangerr)) {
     result.converged = false;
-    result.reason = "estimate moved beyond the matching bounds (" + std::to_string(moved) +
+    result.status = "estimate moved beyond the matching bounds (" + std::to_string(moved) +
                     " m, " + std::to_string(RadToDeg(turned)) + " deg)";
   }
   // Our check beyond the thesis: at the estimate, enough of the scan must lie on the map.
@@ -216,11 +203,11 @@ FeaturePoseResult FeaturePoseEstimator::Estimate(const LadarScan& scan,
     const double max_median = options_.max_median_distance_factor * options_.minimization.point_sigma;
     if (result.support < options_.min_support) {
       result.converged = false;
-      result.reason = "only " + std::to_string(static_cast<int>(100.0 * result.support)) +
+      result.status = "only " + std::to_string(static_cast<int>(100.0 * result.support)) +
                       "% of the scan lies on the map at the estimate";
     } else if (options_.max_median_distance_factor > 0.0 && support.median_distance > max_median) {
       result.converged = false;
-      result.reason = "scan points lie " + std::to_string(support.median_distance) +
+      result.status = "scan points lie " + std::to_string(support.median_distance) +
                       " m from the map at the estimate (median; noise allows " + std::to_string(max_median) + ")";
     }
   }

@@ -17,8 +17,8 @@
 #include <vector>
 
 #include "common/geometry.h"
+#include "common/match_result.h"
 #include "common/pose2.h"
-#include "common/pose_estimate.h"
 #include "common/scan.h"
 #include "pose_estimator/feature/feature_extraction.h"
 #include "pose_estimator/feature/feature_map.h"
@@ -57,28 +57,20 @@ struct FeaturePoseTimings {  // s of stage_clock spent in each stage (0 without 
   double total() const { return prediction + extraction + matching + minimization + verification; }
 };
 
-struct FeaturePoseResult {
-  Pose2 pose;  // vehicle in the map frame (the initial estimate when nothing was computed)
-  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();  // (x, y, theta)
-  bool converged = false;
-  std::string reason = "not run";
-  int iterations = 0;
-  int num_points = 0;  // valid scan readings
+// The core (common/match_result.h) as this estimator fills it: pose = the initial estimate
+// when nothing was computed; covariance of the vehicle pose, carried through the sensor
+// offset; num_points = the valid scan readings; num_inliers = the feature correspondences
+// kept by the minimiser (features, not points); residual = the RMS of their distance errors.
+struct FeaturePoseResult : MatchResult {
   int sensed_corners = 0, sensed_lines = 0;
   int predicted_corners = 0, predicted_lines = 0;
   int candidate_pairs = 0;  // after the unary constraints
   int matches = 0;          // in the largest consistent set
-  int used = 0;             // correspondences kept by the minimiser
-  double residual = 0.0;    // m, RMS of the distance errors
   bool search_complete = true;
   double support = 0.0;     // fraction of scan points on the map at the estimate
   double support_median_distance = 0.0;  // m, their median distance from the map
   FeaturePoseTimings timings;
 };
-
-// The result as the fleet's one estimate type (common/pose_estimate.h); utime, scan_id,
-// source and compute_time are the caller's to fill in.
-PoseEstimate ToPoseEstimate(const FeaturePoseResult& r);
 
 class FeaturePoseEstimator {
  public:

@@ -88,12 +88,12 @@ int Main(int argc, char** argv) {
     });
   }
   ScanEstimationNode node(runtime, p.estimation, "fpe",
-                          [&](const LadarScan& scan, const Pose2& initial, std::string* why) -> std::optional<PoseEstimate> {
+                          [&](const LadarScan& scan, const Pose2& initial, std::string* why) -> std::optional<MatchResult> {
                             if (!estimator) {
                               *why = "no map yet";
                               return std::nullopt;
                             }
-                            return ToPoseEstimate(estimator->Estimate(scan, initial));
+                            return estimator->Estimate(scan, initial);  // its core is what POSE_FPE carries
                           });
   return node.Run();
 }

@@ -55,7 +55,7 @@ TEST(FeaturePoseEstimator, CorridorWithoutCornersIsNotConvergedAndShowsTheFreeDi
   const FeaturePoseResult r = estimator.Estimate(SimulateScan(map, truth, 1000, 0.05, 3, Pose2(), 30.0),
                                                  Pose2(2.5, 2.3, 0.12));
   EXPECT_FALSE(r.converged);
-  EXPECT_NE(r.reason.find("unobservable"), std::string::npos) << r.reason;
+  EXPECT_NE(r.status.find("unobservable"), std::string::npos) << r.status;
   EXPECT_GT(r.covariance(0, 0), 1e5);
   EXPECT_LT(r.covariance(1, 1), 0.01);
   EXPECT_NEAR(r.pose.y, truth.y, 0.03);  // what is observable is still right
@@ -70,7 +70,7 @@ TEST(FeaturePoseEstimator, FeaturelessScanIsNotConverged) {
   const FeaturePoseEstimator estimator(circle);
   const FeaturePoseResult r = estimator.Estimate(SimulateScan(circle, Pose2(0.5, 0, 0), 1000, 0.02), Pose2(0.6, 0.1, 0));
   EXPECT_FALSE(r.converged);
-  EXPECT_EQ(r.reason, "no features in the scan");
+  EXPECT_EQ(r.status, "no features in the scan");
   EXPECT_EQ(r.pose.x, 0.6);
 }
 
@@ -82,7 +82,7 @@ TEST(FeaturePoseEstimator, EmptyMapAndInvalidScanAreNotConverged) {
   bad.max_range = -1;
   const FeaturePoseResult r = FeaturePoseEstimator(world).Estimate(bad, Pose2(3, 3, 0));
   EXPECT_FALSE(r.converged);
-  EXPECT_NE(r.reason.find("invalid scan"), std::string::npos);
+  EXPECT_NE(r.status.find("invalid scan"), std::string::npos);
 }
 
 // Whatever the initial error, a converged answer is a right answer.
@@ -102,7 +102,7 @@ TEST(FeaturePoseEstimator, NeverClaimsAWrongPoseAsConverged) {
     const FeaturePoseResult r = estimator.Estimate(SimulateScan(world, truth, 1000, 0.1, static_cast<unsigned>(trial)), guess);
     if (!r.converged) continue;
     ++converged;
-    EXPECT_LT(TranslationDistance(r.pose, truth), 0.1) << "trial " << trial << ": " << r.reason;
+    EXPECT_LT(TranslationDistance(r.pose, truth), 0.1) << "trial " << trial << ": " << r.status;
     EXPECT_LT(HeadingDistance(r.pose, truth), DegToRad(1)) << "trial " << trial;
   }
   EXPECT_GT(converged, 0);

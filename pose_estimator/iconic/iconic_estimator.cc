@@ -26,22 +26,6 @@ bool ParseIconicMode(const std::string& text, IconicMode* out) {
   return false;
 }
 
-PoseEstimate ToPoseEstimate(const IconicMatchResult& r, const LadarScan& scan) {
-  PoseEstimate e;
-  e.utime = scan.utime;
-  e.scan_id = scan.scan_id;
-  e.source = "ipe";
-  e.pose = r.pose;
-  e.covariance = r.covariance;
-  e.residual = r.residual;
-  e.num_points = r.num_points;
-  e.num_inliers = r.num_inliers;
-  e.iterations = r.iterations;
-  e.converged = r.converged;
-  e.status = r.status;
-  return e;
-}
-
 IconicEstimator::IconicEstimator(IconicEstimatorOptions options) : options_(std::move(options)) {
   options_.correspondence.max_distance =
       std::max(options_.correspondence.max_distance, options_.match.initial_threshold);

@@ -13,7 +13,6 @@
 #include <string>
 #include <vector>
 
-#include "common/pose_estimate.h"
 #include "common/scan.h"
 #include "pose_estimator/iconic/correspondence.h"
 #include "pose_estimator/iconic/iconic_matcher.h"
@@ -54,9 +53,6 @@ struct IconicEstimatorOptions {
   bool every_overlapping_scan = true;  // see MultiScanOptions
   int point_stride = 1;
 };
-
-// One scan's estimate as PoseEstimate (source "ipe"); compute_time is left to the caller.
-PoseEstimate ToPoseEstimate(const IconicMatchResult& r, const LadarScan& scan);
 
 // Incremental estimator for modes kSurveyed .. kAllPrevious (one scan at a time, as the
 // live process needs). kSimultaneous goes through EstimateSequence.

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "common/angle.h"
+#include "common/pose_estimate.h"
 #include "pose_estimator/iconic/iconic_test_world.h"
 
 namespace minenav {
@@ -52,7 +53,7 @@ TEST(IconicEstimatorTest, ModesParseAndBadMapIsReported) {
   EXPECT_EQ(estimator.SetMap(RoomWorld()), "");
   const IconicMatchResult r = estimator.AddScan(scan, Pose2(3.2, 3.1, 0.02));
   EXPECT_TRUE(r.converged) << r.status;
-  const PoseEstimate e = ToPoseEstimate(r, scan);
+  const PoseEstimate e = MakePoseEstimate(r, scan.utime, scan.scan_id, "ipe", 0.0);
   EXPECT_EQ(e.source, "ipe");
   EXPECT_EQ(e.num_inliers, r.num_inliers);
 }

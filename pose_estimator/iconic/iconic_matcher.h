@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "common/match_result.h"
 #include "common/pose2.h"
 #include "common/scan.h"
 #include "pose_estimator/iconic/correspondence.h"
@@ -46,18 +47,12 @@ struct IconicMatchOptions {
 // Returns "" if the options are consistent, else a one-line reason.
 std::string ValidateIconicMatchOptions(const IconicMatchOptions& options);
 
-struct IconicMatchResult {
-  Pose2 pose;  // vehicle in the map frame: the last iterate; do not trust it unless converged
-  // Covariance of (x, y, theta) from the normal equations: sigma^2 (J^T W J)^-1 with sigma^2
-  // the weighted residual variance; m^2, m rad, rad^2. Zero when not converged.
-  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
-  double residual = 0.0;  // m, RMS correspondence error at the final pose and threshold
-  int num_points = 0;     // points given
-  int num_inliers = 0;    // points within the final threshold
-  int iterations = 0;
-  double final_threshold = 0.0;  // m
-  bool converged = false;
-  std::string status = "not run";  // "ok" or a one-line reason
+// The core (common/match_result.h) as this matcher fills it: pose = the last iterate;
+// covariance = sigma^2 (J^T W J)^-1 from the normal equations, sigma^2 the weighted residual
+// variance (zero when not converged); num_points = the points given; num_inliers = the
+// points within the final threshold; residual = their RMS error at the final pose.
+struct IconicMatchResult : MatchResult {
+  double final_threshold = 0.0;  // m, the correspondence threshold of the last iteration
 };
 
 // points: scan points in the vehicle frame (NaN points are ignored). initial: vehicle

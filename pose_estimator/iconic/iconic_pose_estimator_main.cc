@@ -145,16 +145,14 @@ int Main(int argc, char** argv) {
   }
 
   ScanEstimationNode node(runtime, p.estimation, "ipe",
-                          [&](const LadarScan& scan, const Pose2& initial, std::string*) -> std::optional<PoseEstimate> {
-                            return ToPoseEstimate(estimator->AddScan(scan, initial), scan);
+                          [&](const LadarScan& scan, const Pose2& initial, std::string*) -> std::optional<MatchResult> {
+                            return estimator->AddScan(scan, initial);  // its core is what POSE_IPE carries
                           });
   node.set_label(p.mode);
   if (eo.mode == IconicMode::kSimultaneous) {
     node.EstimateAllAtEnd([&](const std::vector<LadarScan>& scans, const std::vector<Pose2>& initial) {
-      std::vector<PoseEstimate> out;
-      for (const IconicMatchResult& r : EstimateSequence(scans, initial, {}, eo))
-        out.push_back(ToPoseEstimate(r, scans[out.size()]));
-      return out;
+      const std::vector<IconicMatchResult> results = EstimateSequence(scans, initial, {}, eo);
+      return std::vector<MatchResult>(results.begin(), results.end());
     });
   }
   return node.Run();
