@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "common/angle.h"
+#include "common/scan_split.h"
 
 namespace minenav::mapper {
 
@@ -53,12 +55,22 @@ std::vector<float> MedianFilterRanges(const std::vector<float>& ranges, const st
   return out;
 }
 
+namespace {
+// The preprocessing options as the one splitter's (common/scan_split.h). The rest are the
+// splitter's defaults, which are the mapper's rules: an invalid reading (NaN, out of the
+// range interval) breaks a partial scan, and on a full 360° scan the partial scans that
+// meet across the seam are one, listed first.
+ScanSplitOptions PartialScanSplitOptions(const ScanPreprocessingOptions& options) {
+  ScanSplitOptions split;
+  split.break_distance = options.discontinuity_threshold;
+  split.break_incidence_angle = options.discontinuity_angle;
+  split.min_points = options.min_points_per_partial_scan;
+  return split;
+}
+}  // namespace
+
 double DiscontinuityGap(double range, double angle_step, const ScanPreprocessingOptions& options) {
-  const double step = std::abs(angle_step);
-  // Off, or an angle step too coarse for the incidence asked: the fixed threshold alone.
-  if (options.discontinuity_angle <= step) return options.discontinuity_threshold;
-  return std::max(options.discontinuity_threshold,
-                  range * std::sin(step) / std::sin(options.discontinuity_angle - step));
+  return AllowedGap(range, angle_step, PartialScanSplitOptions(options));
 }
 
 std::vector<Eigen::Vector2d> ReduceDensity(const std::vector<Eigen::Vector2d>& points, double min_spacing) {
@@ -89,53 +101,23 @@ PreprocessedScan PreprocessScan(const LadarScan& scan, const ScanPreprocessingOp
   }
   const std::vector<float> ranges = MedianFilterRanges(scan.ranges, valid, options.median_filter_size);
 
-  // Points in the vehicle frame, in reading order; runs split at invalid readings and jumps.
-  std::vector<Eigen::Vector2d> pts(n);
+  // Points in the vehicle frame, in reading order; invalid readings stay NaN (missing).
+  std::vector<Eigen::Vector2d> pts(n, Eigen::Vector2d::Constant(std::numeric_limits<double>::quiet_NaN()));
   for (size_t i = 0; i < n; ++i) {
     if (!valid[i]) continue;
     const double r = ranges[i], a = scan.Bearing(i);
     pts[i] = scan.sensor_offset * Eigen::Vector2d(r * std::cos(a), r * std::sin(a));
   }
-  struct Run {
-    std::vector<Eigen::Vector2d> points;
-    int first = 0, last = 0;
-  };
-  std::vector<Run> runs;
-  bool open = false;
-  for (size_t i = 0; i < n; ++i) {
-    if (!valid[i]) {
-      open = false;
-      continue;
-    }
-    // The gap allowed grows with the nearer reading's range (nearer: a far point after a
-    // near one is an occlusion, not the same wall).
-    const double near = open ? std::min(ranges[i], ranges[static_cast<size_t>(runs.back().last)]) : 0.0;
-    if (open && (pts[i] - runs.back().points.back()).norm() <= DiscontinuityGap(near, scan.angle_step, options)) {
-      runs.back().points.push_back(pts[i]);
-      runs.back().last = static_cast<int>(i);
-    } else {
-      runs.push_back({{pts[i]}, static_cast<int>(i), static_cast<int>(i)});
-      open = true;
-    }
-  }
-  // A full turn: the last run continues into the first across the seam.
-  const double coverage = std::abs(scan.angle_step) * static_cast<double>(n);
-  if (runs.size() >= 2 && coverage >= 2.0 * kPi - 1.5 * std::abs(scan.angle_step) && valid[0] &&
-      valid[n - 1] && runs.front().first == 0 && runs.back().last == static_cast<int>(n - 1) &&
-      (pts[0] - pts[n - 1]).norm() <=
-          DiscontinuityGap(std::min(ranges[0], ranges[n - 1]), scan.angle_step, options)) {
-    Run merged = std::move(runs.back());
-    runs.pop_back();
-    merged.points.insert(merged.points.end(), runs.front().points.begin(), runs.front().points.end());
-    merged.last = runs.front().last;
-    runs.front() = std::move(merged);
-  }
-  for (Run& run : runs) {
-    if (static_cast<int>(run.points.size()) < options.min_points_per_partial_scan) continue;
+  // The gap allowed grows with the nearer reading's (filtered) range: a far point after a
+  // near one is an occlusion, not the same wall.
+  const std::vector<double> split_ranges(ranges.begin(), ranges.end());
+  const ScanReadings readings{.points = pts, .ranges = split_ranges, .angle_step = scan.angle_step};
+  for (const PartialScanReadings& run : SplitScan(readings, PartialScanSplitOptions(options))) {
     PartialScan partial;
-    partial.first_index = run.first;
-    partial.last_index = run.last;
-    partial.points = std::move(run.points);
+    partial.first_index = run.readings.front();
+    partial.last_index = run.readings.back();
+    partial.points.reserve(run.readings.size());
+    for (const int i : run.readings) partial.points.push_back(pts[static_cast<size_t>(i)]);
     if (scan.angle_step < 0.0) {  // keep counter-clockwise order about the sensor
       std::reverse(partial.points.begin(), partial.points.end());
       std::swap(partial.first_index, partial.last_index);

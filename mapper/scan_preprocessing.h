@@ -64,8 +64,9 @@ struct PreprocessedScan {
 std::vector<float> MedianFilterRanges(const std::vector<float>& ranges, const std::vector<bool>& valid,
                                       int size);
 
-// Whole pipeline. Invalid readings (NaN, out of the range interval) break partial scans;
-// on a full 360° scan the partial scans that meet across the seam are merged.
+// Whole pipeline. Partial scans are split by common/scan_split.h: invalid readings (NaN,
+// out of the range interval) break them; on a full 360° scan the partial scans that meet
+// across the seam are merged.
 PreprocessedScan PreprocessScan(const LadarScan& scan, const ScanPreprocessingOptions& options);
 
 // The largest gap between consecutive points that does not start a new partial scan, after

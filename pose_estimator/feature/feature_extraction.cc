@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 
+#include "common/scan_split.h"
 #include "pose_estimator/feature/incremental_line_fitter.h"
 
 namespace minenav {
@@ -156,49 +158,45 @@ Eigen::Vector2d AwayFrom(const LineFit& f, const Eigen::Vector2d& v) {
   return f.direction.dot(f.centroid - v) >= 0 ? f.direction : Eigen::Vector2d(-f.direction);
 }
 
+// The scan's pieces (common/scan_split.h): readings are neighbours if no more than one
+// reading is missing between them (a lone dropout does not cut a wall) and they are close
+// in space. On a full circle the piece that straddles index 0 stays whole, listed last:
+// pieces are listed where they start.
+std::vector<Piece> SplitIntoPieces(const LadarScan& scan, const std::vector<ScanPoint>& pts,
+                                   const ExtractionOptions& o) {
+  const size_t total = scan.ranges.size();
+  std::vector<Eigen::Vector2d> points(total, Eigen::Vector2d::Constant(std::numeric_limits<double>::quiet_NaN()));
+  std::vector<double> ranges(total, 0.0);
+  std::vector<const ScanPoint*> point_of_reading(total, nullptr);
+  for (const ScanPoint& p : pts) {
+    const auto i = static_cast<size_t>(p.index);
+    points[i] = p.point;
+    ranges[i] = p.range;
+    point_of_reading[i] = &p;
+  }
+  ScanSplitOptions split;
+  split.break_distance = o.break_distance;
+  split.break_range_factor = o.break_range_factor;
+  split.min_points = o.min_piece_points;
+  split.max_missing_readings = 1;
+  split.wrap_around = WrapAround::kFullTurn;
+  split.seam_partial_scan_first = false;
+  std::vector<Piece> pieces;
+  const ScanReadings readings{.points = points, .ranges = ranges, .angle_step = scan.angle_step};
+  for (const PartialScanReadings& partial : SplitScan(readings, split)) {
+    Piece& piece = pieces.emplace_back();
+    piece.closed = partial.closed;
+    piece.points.reserve(partial.readings.size());
+    for (const int i : partial.readings) piece.points.push_back(*point_of_reading[static_cast<size_t>(i)]);
+  }
+  return pieces;
+}
+
 std::vector<Piece> BreakScan(const LadarScan& scan, const std::vector<ScanPoint>& pts,
                              const ExtractionOptions& o) {
-  std::vector<Piece> pieces;
-  const int n = static_cast<int>(pts.size());
-  if (n == 0) return pieces;
-  const double step = std::abs(scan.angle_step);
+  std::vector<Piece> pieces = SplitIntoPieces(scan, pts, o);
   const int total = static_cast<int>(scan.ranges.size());
-  const bool full_circle = step * static_cast<double>(total) >= 2.0 * kPi - 1.5 * step;
-  // Readings are neighbours if no more than one reading is missing between them and they
-  // are close in space.
-  auto linked = [&](const ScanPoint& a, const ScanPoint& b) {
-    int gap = b.index - a.index;
-    if (gap < 0) gap += total;
-    if (gap > 2) return false;
-    const double limit = o.break_distance + o.break_range_factor * std::min(a.range, b.range);
-    return (a.point - b.point).norm() <= limit;
-  };
-  // Where does a piece start? At each break. On a full circle, start after a break so the
-  // piece that straddles index 0 stays whole.
-  int first = 0;
-  if (full_circle) {
-    for (int i = 0; i < n; ++i) {
-      if (!linked(pts[static_cast<size_t>((i + n - 1) % n)], pts[static_cast<size_t>(i)])) {
-        first = i;
-        break;
-      }
-    }
-  }
-  bool any_break = !full_circle;
-  for (int i = 0; i < n && !any_break; ++i) {
-    any_break = !linked(pts[static_cast<size_t>((i + n - 1) % n)], pts[static_cast<size_t>(i)]);
-  }
-  Piece cur;
-  cur.closed = !any_break;
-  for (int k = 0; k < n; ++k) {
-    const ScanPoint& p = pts[static_cast<size_t>((first + k) % n)];
-    if (!cur.points.empty() && !linked(cur.points.back(), p)) {
-      pieces.push_back(std::move(cur));
-      cur = Piece{};
-    }
-    cur.points.push_back(p);
-  }
-  pieces.push_back(std::move(cur));
+  const bool full_circle = CoversFullTurn(scan.ranges.size(), scan.angle_step);
 
   // An end occludes if the reading just beyond it is missing (nothing within range) or
   // farther away; a scan edge of a partial scan occludes nothing we can know of.
@@ -221,9 +219,6 @@ std::vector<Piece> BreakScan(const LadarScan& scan, const std::vector<ScanPoint>
     pc.occluding_start = ra && *ra > a.range + o.break_distance;
     pc.occluding_end = rb && *rb > b.range + o.break_distance;
   }
-  std::erase_if(pieces, [&](const Piece& pc) {
-    return static_cast<int>(pc.points.size()) < o.min_piece_points;
-  });
   return pieces;
 }
 

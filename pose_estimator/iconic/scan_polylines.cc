@@ -4,28 +4,26 @@
 #include <algorithm>
 #include <cmath>
 
+#include "common/scan_split.h"
+
 namespace minenav {
 
 std::vector<std::vector<Eigen::Vector2d>> SplitIntoPartialScans(const std::vector<Eigen::Vector2d>& points,
                                                                const PartialScanOptions& options) {
+  ScanSplitOptions split;
+  split.break_distance = options.break_distance;
+  split.min_points = options.min_points;
+  // Points carry no bearing: a NaN point is skipped, not a break, and a ring is known by its
+  // last point lying near its first.
+  split.max_missing_readings = kAnyNumberOfMissingReadings;
+  split.wrap_around = WrapAround::kWhenEndsMeet;
+  split.seam_partial_scan_first = true;
   std::vector<std::vector<Eigen::Vector2d>> out;
-  std::vector<Eigen::Vector2d> current;
-  for (const Eigen::Vector2d& p : points) {
-    if (!std::isfinite(p.x()) || !std::isfinite(p.y())) continue;
-    if (!current.empty() && (p - current.back()).norm() > options.break_distance) {
-      out.push_back(std::move(current));
-      current.clear();
-    }
-    current.push_back(p);
+  for (const PartialScanReadings& partial : SplitScan({.points = points, .ranges = {}, .angle_step = 0.0}, split)) {
+    std::vector<Eigen::Vector2d>& run = out.emplace_back();
+    run.reserve(partial.readings.size());
+    for (const int i : partial.readings) run.push_back(points[static_cast<size_t>(i)]);
   }
-  if (!current.empty()) out.push_back(std::move(current));
-  // Close the ring: a full scan's last run continues into its first.
-  if (out.size() >= 2 && (out.back().back() - out.front().front()).norm() <= options.break_distance) {
-    out.back().insert(out.back().end(), out.front().begin(), out.front().end());
-    out.front() = std::move(out.back());
-    out.pop_back();
-  }
-  std::erase_if(out, [&](const auto& run) { return static_cast<int>(run.size()) < options.min_points; });
   return out;
 }
 

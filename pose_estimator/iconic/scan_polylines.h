@@ -20,8 +20,9 @@ struct PartialScanOptions {
   int min_points = 3;
 };
 
-// Splits consecutive scan points (in scan order) into partial scans. A 360-degree scan
-// whose last point is near its first wraps around into one partial scan.
+// Splits consecutive scan points (in scan order) into partial scans (common/scan_split.h):
+// NaN points are skipped, and a 360-degree scan whose last point is near its first wraps
+// around, its last partial scan continuing into the first (listed first).
 std::vector<std::vector<Eigen::Vector2d>> SplitIntoPartialScans(const std::vector<Eigen::Vector2d>& points,
                                                                const PartialScanOptions& options);
 
