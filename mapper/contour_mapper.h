@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "common/config.h"
 #include "common/scan.h"
 #include "mapper/concurrent_refinement.h"
 #include "mapper/contour_fitting.h"
@@ -58,6 +59,8 @@ struct ContourMapperOptions {
 };
 
 std::string ValidateOptions(const ContourMapperOptions& options);
+// Declares every field of `o` under `scope` (unit, default, range, why): config keys and flags.
+void DeclareOptions(OptionScope scope, ContourMapperOptions& o);
 
 struct InsertOptions {
   // m; overrides pose.initial_threshold for this scan (0 = use the option's value).

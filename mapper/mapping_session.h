@@ -23,6 +23,7 @@
 #include <string>
 #include <vector>
 
+#include "common/config.h"
 #include "common/file_io.h"
 #include "common/pose2.h"
 #include "common/scan.h"
@@ -44,6 +45,8 @@ struct MappingSessionOptions {
 };
 
 std::string ValidateOptions(const MappingSessionOptions& options);
+// Declares every field of `o` under `scope` (unit, default, range, why): config keys and flags.
+void DeclareOptions(OptionScope scope, MappingSessionOptions& o);
 
 enum class ScanOutcome { kInserted, kTracked, kRefused };
 const char* ToString(ScanOutcome outcome);
