@@ -171,4 +171,8 @@ ConcurrentRefinementResult ContourMapper::Refine(const ShouldStop& should_stop) 
   return RefineConcurrently(scans_, map_, options);
 }
 
+ConcurrentRefinementResult ContourMapper::RefineWith(const ConcurrentRefinementOptions& refinement) {
+  return RefineConcurrently(scans_, map_, refinement);
+}
+
 }  // namespace minenav::mapper

@@ -96,6 +96,9 @@ class ContourMapper {
   ConcurrentRefinementResult Refine();
   // The same with another stop test in place of the options' (empty: run to the end).
   ConcurrentRefinementResult Refine(const ShouldStop& should_stop);
+  // The same with other refinement options in place of options().refinement (a final
+  // refinement of its own number of rounds).
+  ConcurrentRefinementResult RefineWith(const ConcurrentRefinementOptions& refinement);
 
   // Replaces the map (e.g. loaded from a file); scans are kept.
   void SetMap(ContourMap map) { map_ = std::move(map); }

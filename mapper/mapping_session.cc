@@ -200,6 +200,10 @@ ConcurrentRefinementResult MappingSession::Refine(const ShouldStop& should_stop)
   return AfterRefine(mapper_.Refine(should_stop));
 }
 
+ConcurrentRefinementResult MappingSession::RefineWith(const ConcurrentRefinementOptions& refinement) {
+  return AfterRefine(mapper_.RefineWith(refinement));
+}
+
 ConcurrentRefinementResult MappingSession::AfterRefine(ConcurrentRefinementResult r) {
   // A stopped refinement is still due: a run resumed from a checkpoint of this state does
   // it at its next insert.

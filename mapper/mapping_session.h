@@ -104,6 +104,8 @@ class MappingSession {
   ConcurrentRefinementResult Refine();
   // The same with another stop test in place of the options' (empty: run to the end).
   ConcurrentRefinementResult Refine(const ShouldStop& should_stop);
+  // The same with other refinement options in place of options().mapper.refinement.
+  ConcurrentRefinementResult RefineWith(const ConcurrentRefinementOptions& refinement);
 
   const MappingSessionOptions& options() const { return options_; }
   const ContourMapper& mapper() const { return mapper_; }
