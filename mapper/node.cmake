@@ -1,10 +1,17 @@
-# The mapping session (the policy batch and live share) and checkpoints: no LCM.
+# The mapping session (the policy batch and live share), checkpoints and the presets
+# (mapper/presets/*.conf, compiled in: the installed binaries need no source tree): no LCM.
+include(MinenavEmbedText)
 minenav_algorithm_library(minenav_mapping_session
   ${CMAKE_CURRENT_LIST_DIR}/mapping_session.cc
-  ${CMAKE_CURRENT_LIST_DIR}/map_checkpoint.cc)
+  ${CMAKE_CURRENT_LIST_DIR}/map_checkpoint.cc
+  ${CMAKE_CURRENT_LIST_DIR}/mapper_presets.cc)
 target_link_libraries(minenav_mapping_session PUBLIC minenav_mapper)
+minenav_embed_text(TARGET minenav_mapping_session HEADER mapper/mapper_presets_text.h
+  NAMESPACE minenav::mapper::embedded
+  FILES ${CMAKE_CURRENT_LIST_DIR}/presets/survey.conf ${CMAKE_CURRENT_LIST_DIR}/presets/carmen.conf)
 minenav_test(NAME mapping_session_test NO_LCM
   SOURCES ${CMAKE_CURRENT_LIST_DIR}/mapping_session_test.cc ${CMAKE_CURRENT_LIST_DIR}/map_checkpoint_test.cc
+          ${CMAKE_CURRENT_LIST_DIR}/mapper_options_test.cc
   LIBS minenav_mapping_session)
 
 # The contour_mapper process: batch over logs (--log) and live.
