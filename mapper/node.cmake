@@ -14,16 +14,26 @@ minenav_test(NAME mapping_session_test NO_LCM
           ${CMAKE_CURRENT_LIST_DIR}/mapper_options_test.cc
   LIBS minenav_mapping_session)
 
+# The contour mapper as a node (pairing, worker, answers, checkpoints, outputs), tested
+# without a network through FakeBus and LogBus; the process is a thin main over it.
+minenav_node_library(minenav_contour_mapper_node ${CMAKE_CURRENT_LIST_DIR}/contour_mapper_node.cc)
+target_link_libraries(minenav_contour_mapper_node PUBLIC minenav_mapping_session minenav_render minenav_node)
+minenav_no_ground_truth(minenav_contour_mapper_node)
+minenav_test(NAME contour_mapper_node_test
+  SOURCES ${CMAKE_CURRENT_LIST_DIR}/contour_mapper_node_test.cc
+  LIBS minenav_contour_mapper_node)
+
 # The contour_mapper process: batch over logs (--log) and live.
 minenav_executable(contour_mapper ${CMAKE_CURRENT_LIST_DIR}/contour_mapper_main.cc)
-target_link_libraries(contour_mapper PRIVATE minenav_mapping_session minenav_render minenav_node Threads::Threads)
+target_link_libraries(contour_mapper PRIVATE minenav_contour_mapper_node)
 
 if(EXISTS "${CMAKE_SOURCE_DIR}/tests/child_process.cc")
   minenav_test(NAME contour_mapper_process_test
     SOURCES ${CMAKE_CURRENT_LIST_DIR}/contour_mapper_process_test.cc "${CMAKE_SOURCE_DIR}/tests/child_process.cc"
     LIBS minenav_mapper minenav_common)
   target_compile_definitions(contour_mapper_process_test PRIVATE
-    MINENAV_CONTOUR_MAPPER_BIN="$<TARGET_FILE:contour_mapper>" MINENAV_LOG_TOOL_BIN="$<TARGET_FILE:log_tool>")
+    MINENAV_CONTOUR_MAPPER_BIN="$<TARGET_FILE:contour_mapper>" MINENAV_LOG_TOOL_BIN="$<TARGET_FILE:log_tool>"
+    MINENAV_SOURCE_DIR="${CMAKE_SOURCE_DIR}")
   add_dependencies(contour_mapper_process_test contour_mapper log_tool)
 endif()
 
