@@ -3,9 +3,10 @@
 // 2009 (evaluation/relations.h) next to Cartographer's published figures (Hess et al., ICRA
 // 2016, Table II), with raw odometry and iconic scan-to-scan matching (thesis 3.3 with the
 // previous scan as the map) as baselines; the Freiburg hospital log (no relations) is mapped
-// for its time and picture. Every log runs with the same options
-// (mapper/carmen_session_options.h): each scan is tracked against the contour map, scans are
-// inserted at a spacing, and an optional final concurrent refinement (4.7) runs at the end.
+// for its time and picture. Every log runs with the same options, the preset
+// mapper/presets/carmen.conf (loaded as contour_mapper --preset carmen loads it): each scan
+// is tracked against the contour map, scans are inserted at a spacing, and an optional
+// final concurrent refinement (4.7) runs at the end.
 //
 //   mapper_carmen_bench [--datasets DIR] [--only intel,fr079,mit-csail,fr-clinic]
 //                       [--max-scans N] [--svg-dir DIR] [--json-out FILE]
@@ -33,7 +34,7 @@
 #include "dataset_readers/carmen_log.h"
 #include "evaluation/relations.h"
 #include "render/svg_render.h"
-#include "mapper/carmen_session_options.h"
+#include "mapper/mapper_presets.h"
 #include "mapper/mapping_session.h"
 #include "pose_estimator/iconic/iconic_estimator.h"
 
@@ -214,9 +215,10 @@ std::string Fmt(const minenav::RelationScore& s) {
 
 int Run(int argc, char** argv) {
   std::string datasets_dir = MINENAV_DATASETS_DIR, only = "intel,fr079,mit-csail,fr-clinic", svg_dir, json_out;
-  int max_scans = 0, final_refine_rounds = 0;
+  const mapper::MapperRunOptions preset = mapper::MapperPresetOptions("carmen");
+  int max_scans = 0, final_refine_rounds = preset.final_refinement_rounds;
   bool baselines = true;
-  // Overrides of carmen_session_options.h for experiments (0 = keep the preset's value).
+  // Overrides of mapper/presets/carmen.conf for experiments (0 = keep the preset's value).
   double insert_translation = 0, insert_rotation = 0, final_threshold = 0, max_range = 0, nominal_segment = 0;
   double discontinuity_angle = -1, initial_threshold = 0, heading_search = -1, heading_margin = -1;
   int min_pieces = 0;
@@ -250,7 +252,7 @@ int Run(int argc, char** argv) {
   schema.AddDouble("discontinuity_angle", &discontinuity_angle, "rad",
                    "override: preprocessing discontinuity_angle (-1 = preset, 0 = off)", -1, 1.5);
   if (schema.Parse(argc, argv) == minenav::ParseOutcome::kExit) return 0;
-  mapper::MappingSessionOptions options = mapper::CarmenSessionOptions();
+  mapper::MappingSessionOptions options = preset.session;
   options.mapper.refinement.max_rounds = std::max(1, final_refine_rounds);
   if (insert_translation > 0) options.insert_min_translation = insert_translation;
   if (insert_rotation > 0) options.insert_min_rotation = insert_rotation;

@@ -1,9 +1,10 @@
 // The CI-sized slice of the real-data benchmark (issue #7, bench/mapper_carmen_bench.cc):
 // the first 800 scans of the Intel Research Lab log (157 s of a robot driving with people
-// about) through a MappingSession with the options every CARMEN log uses
-// (carmen_session_options.h), scored with the relation metric of Kuemmerle et al. 2009
-// (evaluation/relations.h) against the 77 relations whose two times both fall inside the
-// slice. The bounds are the measured errors with a margin (mapper/README.md, "Real data");
+// about) through a MappingSession with the options every CARMEN log uses (the preset
+// mapper/presets/carmen.conf, loaded as the process and the bench load it), scored with
+// the relation metric of Kuemmerle et al. 2009 (evaluation/relations.h) against the 77
+// relations whose two times both fall inside the slice. The bounds are
+// the measured errors with a margin (mapper/README.md, "Real data");
 // a regression in preprocessing, pose estimation, the insert/track policy or the mapper's
 // cycle moves these numbers first. The dataset is found through MINENAV_DATASETS_DIR; a
 // missing file fails the test.
@@ -18,7 +19,7 @@
 
 #include "dataset_readers/carmen_log.h"
 #include "evaluation/relations.h"
-#include "mapper/carmen_session_options.h"
+#include "mapper/mapper_presets.h"
 #include "mapper/mapping_session.h"
 
 namespace minenav::mapper {
@@ -58,7 +59,7 @@ TEST(CarmenRegressionTest, IntelSliceIsMappedWithinTheMeasuredRelationErrors) {
   const Slice slice = LoadIntelSlice();
   ASSERT_EQ(slice.relations.size(), 77u);
 
-  MappingSession session(CarmenSessionOptions());
+  MappingSession session(MapperPresetOptions("carmen").session);
   for (size_t i = 0; i < slice.log.scans.size(); ++i) session.AddScan(slice.log.scans[i], slice.log.scan_odometry[i].pose);
   const MappingSessionState& state = session.state();
   // Every scan gets a pose; a handful may be refused (people crowding the laser).

@@ -19,6 +19,27 @@ std::string ValidateOptions(const ConcurrentRefinementOptions& o) {
   return why.str();
 }
 
+void DeclareOptions(OptionScope s, ConcurrentRefinementOptions& o) {
+  DeclareOptions(s.Nested("loop_closure"), o.loop_closure);
+  DeclareOptions(s.Nested("pose"), o.pose);
+  DeclareOptions(s.Nested("fitting"), o.fitting);
+  s.AddBool("remove_redundant", &o.remove_redundant,
+            "remove redundant contours (a wall mapped twice) before every round: without it each "
+            "end of a loop keeps matching its own copy and the loop never closes");
+  DeclareOptions(s.Nested("redundant"), o.redundant);
+  s.AddInt("max_rounds", &o.max_rounds,
+           "alternating rounds (poses, then contours) at most; a round that raises the total error is undone and "
+           "ends the refinement anyway [rounds]",
+           1, 100000);
+  s.AddDouble("min_relative_decrease", &o.min_relative_decrease, "1",
+              "stop when a round lowers the total error by less than this fraction; 1e-3", 0.0, 1.0);
+  s.AddDouble("evaluation_threshold", &o.evaluation_threshold, "m",
+              "correspondence threshold of the total error that rounds are judged by; 0.2 m, as map "
+              "expansion's",
+              0.001, 100.0);
+  // should_stop is a function a caller supplies (NodeRuntime::StopSignalled), not data.
+}
+
 double TotalError(const std::vector<MappedScan>& scans, const ContourMap& map, double threshold) {
   double total = 0.0;
   for (const MappedScan& s : scans) total += MeasureScanFit(s.scan, s.pose, map, threshold).error;

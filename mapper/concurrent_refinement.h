@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "common/config.h"
 #include "mapper/contour_fitting.h"
 #include "mapper/contour_map.h"
 #include "mapper/loop_closure.h"
@@ -57,6 +58,8 @@ struct ConcurrentRefinementOptions {
 };
 
 std::string ValidateOptions(const ConcurrentRefinementOptions& options);
+// Declares every field of `o` under `scope` (unit, default, range, why): config keys and flags.
+void DeclareOptions(OptionScope scope, ConcurrentRefinementOptions& o);
 
 // Σ over scans of the integral error against the map under `threshold`.
 double TotalError(const std::vector<MappedScan>& scans, const ContourMap& map, double threshold);

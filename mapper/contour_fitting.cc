@@ -29,6 +29,44 @@ std::string ValidateOptions(const ContourFittingOptions& o) {
   return why.str();
 }
 
+void DeclareOptions(OptionScope s, ContourFittingOptions& o) {
+  s.AddDouble("correspondence_threshold", &o.correspondence_threshold, "m",
+              "scan-to-contour threshold while fitting; 0.2 m, as map expansion's, so every point that "
+              "made a contour pulls on it",
+              0.001, 100.0);
+  s.AddDouble("min_segment_length", &o.min_segment_length, "m",
+              "shorter segments are merged away before each iteration (they make the gradient unstable and let "
+              "noise into the contour); 0.1 m",
+              0.0, 100.0);
+  s.AddDouble("max_turn", &o.max_turn, "rad",
+              "a vertex where the contour turns back by more than this is removed (a spike of a noisy rough fit); "
+              "2.4 rad (137 degrees) spares real corners",
+              0.0, kPi);
+  s.AddInt("max_iterations", &o.max_iterations,
+           "iteration limit (termination 5); 30: the preconditioned descent converges in a few [iterations]", 1,
+           100000);
+  s.AddDouble("gradient_tolerance", &o.gradient_tolerance, "m",
+              "termination 2: the largest vertex gradient per matched length below this ends the fit; 1e-7 m",
+              0.0, 1.0);
+  s.AddDouble("step_resolution", &o.step_resolution, "m",
+              "line-search resolution, the smallest vertex move searched (termination 3); 1e-4 m", 1e-9,
+              1.0);
+  s.AddDouble("min_vertex_change", &o.min_vertex_change, "m",
+              "termination 4: the largest vertex move of an iteration below this ends the fit; 1e-4 m",
+              0.0, 1.0);
+  s.AddBool("precondition", &o.precondition,
+            "precondition the gradient by each vertex's Gauss-Newton curvature: the thesis's plain "
+            "gradient (false) needs hundreds of iterations when vertices see different amounts of data");
+  s.AddDouble("damping", &o.damping, "1",
+              "damping of the per-vertex curvature, a fraction of its trace, so directions the data do not "
+              "constrain (along a straight wall) stay put; 0.05",
+              1e-9, 100.0);
+  s.AddDouble("min_curvature", &o.min_curvature, "m",
+              "added to every vertex's curvature so a vertex touched by a sliver of data takes small steps; 0.02 m, "
+              "about 3 % of a vertex seen along both its 0.5 m segments",
+              0.0, 100.0);
+}
+
 namespace {
 
 struct Box {

@@ -23,6 +23,7 @@
 #include <string>
 #include <vector>
 
+#include "common/config.h"
 #include "mapper/contour_map.h"
 #include "mapper/mapped_scan.h"
 
@@ -55,6 +56,8 @@ struct ContourFittingOptions {
 };
 
 std::string ValidateOptions(const ContourFittingOptions& options);
+// Declares every field of `o` under `scope` (unit, default, range, why): config keys and flags.
+void DeclareOptions(OptionScope scope, ContourFittingOptions& o);
 
 struct ContourFittingResult {
   bool converged = false;

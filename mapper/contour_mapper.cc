@@ -30,6 +30,45 @@ std::string ValidateOptions(const ContourMapperOptions& o) {
   return why.str();
 }
 
+void DeclareOptions(OptionScope s, ContourMapperOptions& o) {
+  DeclareOptions(s.Nested("preprocessing"), o.preprocessing);
+  DeclareOptions(s.Nested("pose"), o.pose);
+  DeclareOptions(s.Nested("expansion"), o.expansion);
+  DeclareOptions(s.Nested("disappearance"), o.disappearance);
+  DeclareOptions(s.Nested("fitting"), o.fitting);
+  DeclareOptions(s.Nested("refinement"), o.refinement);
+  s.AddDouble("grid_cell_size", &o.grid_cell_size, "m",
+              "cell of the contour map's segment grid; 2 m, four 0.5 m segments, so a query near a scan "
+              "point visits few cells",
+              0.01, 1000.0);
+  s.AddInt("min_scan_points", &o.min_scan_points,
+           "a scan with fewer usable points (after preprocessing) is refused; 50, 30 for 180-degree "
+           "SICK scans [points]",
+           2, 10000000);
+  s.AddDouble("min_overlap_fraction", &o.min_overlap_fraction, "1",
+              "fraction of a scan's points that must match the map after estimation, else it is refused; 0.15",
+              0.0, 1.0);
+  s.AddDouble("max_correction_translation", &o.max_correction_translation, "m",
+              "refuse a scan whose estimate moves farther than this from its initial pose (it locked onto the "
+              "wrong walls); 2 m, beyond a survey's dead-reckoning error",
+              0.01, 100.0);
+  s.AddDouble("max_correction_rotation", &o.max_correction_rotation, "rad",
+              "refuse a scan whose estimate turns farther than this from its initial pose; 0.35 rad (20 "
+              "degrees)",
+              0.001, 3.2);
+  s.AddDouble("max_rms_distance", &o.max_rms_distance, "m",
+              "refuse a scan whose RMS distance to the contours it matched stays above this; 0.06 m, "
+              "above the Typhoon's 4.4 cm noise",
+              0.001, 10.0);
+  s.AddDouble("local_fit_margin", &o.local_fit_margin, "m",
+              "after an insert only vertices within the scan's bounding box grown by this are refitted, so the rest "
+              "of the map keeps its shape and an insert stays local; < 0 = whole contours; 1 m",
+              -1.0, 1000.0);
+  s.AddBool("refine_after_each_scan", &o.refine_after_each_scan,
+            "concurrent refinement after every accepted scan (4.7: most accurate, slow); off: refine "
+            "periodically or at the end");
+}
+
 ContourMapper::ContourMapper(ContourMapperOptions options)
     : options_(std::move(options)), map_(options_.grid_cell_size) {}
 
@@ -130,6 +169,10 @@ ConcurrentRefinementResult ContourMapper::Refine(const ShouldStop& should_stop) 
   ConcurrentRefinementOptions options = options_.refinement;
   options.should_stop = should_stop;
   return RefineConcurrently(scans_, map_, options);
+}
+
+ConcurrentRefinementResult ContourMapper::RefineWith(const ConcurrentRefinementOptions& refinement) {
+  return RefineConcurrently(scans_, map_, refinement);
 }
 
 }  // namespace minenav::mapper

@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "common/config.h"
 #include "common/scan.h"
 #include "mapper/concurrent_refinement.h"
 #include "mapper/contour_fitting.h"
@@ -58,6 +59,8 @@ struct ContourMapperOptions {
 };
 
 std::string ValidateOptions(const ContourMapperOptions& options);
+// Declares every field of `o` under `scope` (unit, default, range, why): config keys and flags.
+void DeclareOptions(OptionScope scope, ContourMapperOptions& o);
 
 struct InsertOptions {
   // m; overrides pose.initial_threshold for this scan (0 = use the option's value).
@@ -93,6 +96,9 @@ class ContourMapper {
   ConcurrentRefinementResult Refine();
   // The same with another stop test in place of the options' (empty: run to the end).
   ConcurrentRefinementResult Refine(const ShouldStop& should_stop);
+  // The same with other refinement options in place of options().refinement (a final
+  // refinement of its own number of rounds).
+  ConcurrentRefinementResult RefineWith(const ConcurrentRefinementOptions& refinement);
 
   // Replaces the map (e.g. loaded from a file); scans are kept.
   void SetMap(ContourMap map) { map_ = std::move(map); }

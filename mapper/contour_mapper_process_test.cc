@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <sstream>
 #include <thread>
 
 #include "common/config.h"
@@ -308,6 +309,45 @@ TEST_F(ContourMapperProcessTest, APresetInAConfigFileIsInForce) {
   EXPECT_EQ(printed({"--preset", "carmen"}, "flag.txt"), from_file);
   const std::string overridden = printed({"--config", conf.string(), "--max-odometry-gap", "2"}, "override.txt");
   EXPECT_NE(overridden.find("max_odometry_gap = 2"), std::string::npos) << overridden;
+}
+
+// The nested keys a preset sets show under --print-config with the preset's values, from the
+// command line as from a config file (the node test checks they are in force).
+TEST_F(ContourMapperProcessTest, APresetsNestedValuesShowInThePrintedConfiguration) {
+  const fs::path out = dir_ / "carmen.txt";
+  ASSERT_EQ(RunProcess({MINENAV_CONTOUR_MAPPER_BIN, "--preset", "carmen", "--print-config"}, out), 0);
+  const std::string config = ReadTextFile(out.string());
+  EXPECT_NE(config.find("\nmapper.preprocessing.discontinuity_angle = 0.1745329252\n"), std::string::npos) << config;
+  EXPECT_NE(config.find("\nmapper.pose.final_threshold = 0.05\n"), std::string::npos) << config;
+  EXPECT_NE(config.find("\nmapper.min_scan_points = 30\n"), std::string::npos) << config;
+  EXPECT_NE(config.find("\ninsert_min_translation = 0.3\n"), std::string::npos) << config;
+  // A flag (here through its flat alias) overrides the preset.
+  ASSERT_EQ(RunProcess({MINENAV_CONTOUR_MAPPER_BIN, "--preset", "carmen", "--max-correction-translation", "0.5",
+                        "--print-config"},
+                       out),
+            0);
+  EXPECT_NE(ReadTextFile(out.string()).find("\nmapper.max_correction_translation = 0.5\n"), std::string::npos);
+  EXPECT_EQ(RunProcess({MINENAV_CONTOUR_MAPPER_BIN, "--preset", "mine", "--print-config"}, out), 2);
+  EXPECT_NE(ReadTextFile(out.string()).find("survey, carmen"), std::string::npos) << ReadTextFile(out.string());
+}
+
+// mapper/README.md holds the table --print-options-table prints, row for row: a key added,
+// renamed or re-documented without the README fails here.
+TEST_F(ContourMapperProcessTest, TheReadmeHasARowForEveryOption) {
+  const fs::path out = dir_ / "table.txt";
+  ASSERT_EQ(RunProcess({MINENAV_CONTOUR_MAPPER_BIN, "--print-options-table"}, out), 0);
+  const std::string readme = ReadTextFile(std::string(MINENAV_SOURCE_DIR) + "/mapper/README.md");
+  ASSERT_FALSE(readme.empty());
+  std::istringstream table(ReadTextFile(out.string()));
+  int rows = 0;
+  for (std::string line; std::getline(table, line);) {
+    if (line.rfind("| `", 0) != 0) continue;
+    ++rows;
+    EXPECT_NE(readme.find("\n" + line + "\n"), std::string::npos)
+        << "mapper/README.md lacks (or has another version of) the row\n" << line
+        << "\n(regenerate the table with contour_mapper --print-options-table)";
+  }
+  EXPECT_GT(rows, 120);
 }
 
 }  // namespace minenav

@@ -45,6 +45,82 @@ std::string ValidateOptions(const LoopClosureOptions& o) {
   return why.str();
 }
 
+void DeclareOptions(OptionScope s, LoopClosureOptions& o) {
+  s.AddBool("enabled", &o.enabled,
+            "run the pose-graph step before the alternating rounds: alternation alone passes a "
+            "loop's correction around it one scan per round");
+  s.AddDouble("max_pair_distance", &o.max_pair_distance, "m",
+              "scans whose sensors are farther apart (at the current poses) are not registered: they seldom see "
+              "enough of the same walls",
+              0.001, 100000.0);
+  s.AddInt("max_recent_pairs", &o.max_recent_pairs,
+           "each scan is registered against at most this many nearest earlier scans; 4 keeps the cost "
+           "linear in the scans where a robot scanning at 5-10 Hz crowds one place [scans]",
+           1, 1000);
+  s.AddInt("max_loop_pairs", &o.max_loop_pairs,
+           "and against at most this many nearest scans at least loop_index_gap back (loop candidates) [scans]; 4",
+           0, 1000);
+  s.AddInt("loop_index_gap", &o.loop_index_gap,
+           "scans at least this many back count as loop candidates [scans]; 8", 1, 1000000);
+  s.AddDouble("initial_threshold", &o.initial_threshold, "m",
+              "first threshold of a registration: how far two scans' relative pose may be off, the reach of each "
+              "scan's lookup table and the largest accepted move; 1 m, the iconic matcher's basin",
+              0.001, 100.0);
+  s.AddDouble("coarse_threshold", &o.coarse_threshold, "m",
+              "registration stages start with this threshold floor, so a crib or corner still this far off keeps "
+              "pulling (one pass drops such points as outliers at once); 0.8 m",
+              0.001, 100.0);
+  s.AddDouble("coarse_factor", &o.coarse_factor, "1",
+              "each stage's floor is the last one's times this, down to min_threshold; 0.6", 0.01, 0.99);
+  s.AddDouble("min_threshold", &o.min_threshold, "m",
+              "last floor of a registration's shrinking threshold, about 3 sigma of two noisy raw scans; 0.15 m",
+              0.001, 100.0);
+  s.AddDouble("min_overlap", &o.min_overlap, "1",
+              "fraction of the registered scan's points that must match within the final threshold for the "
+              "registration to count; 0.25",
+              0.0, 1.0);
+  s.AddDouble("max_residual", &o.max_residual, "m",
+              "RMS residual of an accepted registration at most; 0.06 m, as the mapper's refusal test",
+              0.0001, 10.0);
+  s.AddInt("point_stride", &o.point_stride,
+           "every k-th point of the registered scan is used (1 = all); 2 halves the cost of dense scans [points]",
+           1, 1000);
+  s.AddDouble("covariance_floor_translation", &o.covariance_floor_translation, "m",
+              "added to each registration's covariance (the matcher's own is optimistic: raw polylines carry "
+              "correlated range noise); 0.003",
+              1e-12, 1000.0);
+  s.AddDouble("covariance_floor_rotation", &o.covariance_floor_rotation, "rad",
+              "heading part of the covariance floor; 0.0002", 1e-12, 1000.0);
+  s.AddDouble("prior_sigma_translation", &o.prior_sigma_translation, "m",
+              "sigma of the weak prior tying consecutive scans to their current relative pose, so the graph stays "
+              "connected where registration fails; 0.2 m",
+              1e-9, 1000.0);
+  s.AddDouble("prior_sigma_rotation", &o.prior_sigma_rotation, "rad",
+              "heading part of that prior; 0.02 rad", 1e-9, 100.0);
+  s.AddDouble("gate_translation", &o.gate_translation, "m",
+              "after optimisation a registration off the solution by more is dropped as a false match; 0.05 m",
+              1e-9, 1000.0);
+  s.AddDouble("gate_rotation", &o.gate_rotation, "rad", "heading part of the gate; 0.005 rad", 1e-9,
+              10.0);
+  s.AddInt("max_gate_passes", &o.max_gate_passes, "optimise / drop passes at most [passes]; 4", 1, 1000);
+  s.AddDouble("loop_translation", &o.loop_translation, "m",
+              "the solution is applied only if a kept registration disagrees with the current poses by more (a "
+              "loop to close); otherwise raw-scan registrations (1-2 cm) would only add noise to a consistent "
+              "map; 0.1 m",
+              0.0, 1000.0);
+  s.AddDouble("loop_rotation", &o.loop_rotation, "rad", "heading part of that trigger; 0.012 rad (0.69 degrees)",
+              0.0, 10.0);
+  s.AddDouble("observation_threshold", &o.observation_threshold, "m",
+              "a scan point this close to a segment moves that segment's vertices with the scan when contours are "
+              "carried along; 0.3 m",
+              0.001, 100.0);
+  s.AddDouble("max_rotation_change", &o.max_rotation_change, "rad",
+              "a registration that turned the pair by more than this left its basin and is rejected (one entry of "
+              "a room-and-pillar mine looks like the next); 0.1 rad",
+              1e-6, kPi);
+  DeclareOptions(s.Nested("graph"), o.graph);
+}
+
 namespace {
 
 // The raw polylines of a scan (thesis 3.3): a segment between neighbouring points of each

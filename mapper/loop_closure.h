@@ -29,6 +29,7 @@
 #include <string>
 #include <vector>
 
+#include "common/config.h"
 #include "mapper/contour_fitting.h"
 #include "mapper/contour_map.h"
 #include "mapper/mapped_scan.h"
@@ -111,6 +112,8 @@ struct LoopClosureOptions {
 };
 
 std::string ValidateOptions(const LoopClosureOptions& options);
+// Declares every field of `o` under `scope` (unit, default, range, why): config keys and flags.
+void DeclareOptions(OptionScope scope, LoopClosureOptions& o);
 
 // One registration of scan `to` against scan `from`.
 struct ScanPairEdge {

@@ -85,6 +85,32 @@ std::string ValidateOptions(const MapDisappearanceOptions& o) {
   return why.str();
 }
 
+void DeclareOptions(OptionScope s, MapDisappearanceOptions& o) {
+  s.AddBool("enabled", &o.enabled,
+            "4.8.2: remove contour parts the scan sees through (triangles of coverage); on, a static "
+            "survey keeps its accuracy (mapper/README.md, Changing worlds)");
+  s.AddDouble("beam_divergence", &o.beam_divergence, "rad",
+              "full beam divergence widening each triangle of coverage by half on either side; 0.003 is "
+              "the Typhoon's, the Cyclone's is 0.004 (sensor_driver/ladar_model.h)",
+              0.0, 0.1);
+  s.AddDouble("correspondence_threshold", &o.correspondence_threshold, "m",
+              "a segment must lie this far in front of both scan points (and this far from them) to be seen "
+              "through; 0.1 m, the pose's final threshold",
+              0.001, 100.0);
+  s.AddDouble("min_view_angle", &o.min_view_angle, "rad",
+              "beams meeting a contour more glancingly than this remove nothing from it (a wall looked along is "
+              "not seen through); 0.35 rad (20 degrees)",
+              0.0, 1.57);
+  s.AddDouble("min_removed_length", &o.min_removed_length, "m",
+              "removed stretches shorter than this along the contour are kept: fitted contours end a few cm past "
+              "true corners, and rays past a corner would nibble it scan after scan; 0.3 m",
+              0.0, 100.0);
+  s.AddDouble("min_piece_length", &o.min_piece_length, "m",
+              "pieces of a cut contour shorter than this go too (the last glancing bits of an object seen "
+              "through; 0.3 m left bits of a parked machine); 0.6 m",
+              0.0, 100.0);
+}
+
 MapDisappearanceResult RemoveDisappeared(const PreprocessedScan& scan, const Pose2& pose, ContourMap& map,
                                          const MapDisappearanceOptions& o) {
   MapDisappearanceResult out;

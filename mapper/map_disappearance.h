@@ -24,6 +24,7 @@
 #include <string>
 #include <vector>
 
+#include "common/config.h"
 #include "common/pose2.h"
 #include "mapper/contour_map.h"
 #include "mapper/scan_preprocessing.h"
@@ -49,6 +50,8 @@ struct MapDisappearanceOptions {
 };
 
 std::string ValidateOptions(const MapDisappearanceOptions& options);
+// Declares every field of `o` under `scope` (unit, default, range, why): config keys and flags.
+void DeclareOptions(OptionScope scope, MapDisappearanceOptions& o);
 
 struct MapDisappearanceResult {
   double removed_length = 0.0;  // m of contour removed

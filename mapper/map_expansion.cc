@@ -25,6 +25,35 @@ std::string ValidateOptions(const MapExpansionOptions& o) {
   return why.str();
 }
 
+void DeclareOptions(OptionScope s, MapExpansionOptions& o) {
+  s.AddDouble("correspondence_threshold", &o.correspondence_threshold, "m",
+              "scan points farther than this from every contour are unmapped (new wall); 0.2 m, twice "
+              "the pose's final threshold, so noise on a mapped wall is not taken for a new one",
+              0.001, 100.0);
+  s.AddDouble("nominal_segment_length", &o.nominal_segment_length, "m",
+              "vertex spacing of new contour pieces (fitting then moves the vertices: shorter segments let noise "
+              "into the shape, longer ones cut corners)",
+              0.01, 100.0);
+  s.AddInt("min_new_points", &o.min_new_points,
+           "unmatched runs with fewer points are ignored (vertex wedges, noise); 5 [points]", 2, 1000000);
+  s.AddDouble("min_new_length", &o.min_new_length, "m",
+              "unmatched runs shorter than this along the scan are ignored; 0.3 m", 0.0, 100.0);
+  s.AddDouble("end_snap_distance", &o.end_snap_distance, "m",
+              "a run continues a contour's end (start) when the matched point next to it lies this close to that "
+              "vertex; 1 m, two nominal segments",
+              0.0, 100.0);
+  s.AddBool("splice_interior", &o.splice_interior,
+            "4.8.1: splice runs beside a match on a contour's interior segment into that contour (an object placed "
+            "against a wall); false = the static expansion of 4.4 (they become new contours)");
+  s.AddDouble("min_splice_length", &o.min_splice_length, "m",
+              "shorter unmatched runs beside a contour's interior are not spliced (corners, noise); 0.5 m",
+              0.0, 100.0);
+  s.AddDouble("max_bypass_ratio", &o.max_bypass_ratio, "1",
+              "a case-4 splice into one contour may leave at most this times the run's length of wall behind it "
+              "(more: a run across an alcove's mouth, not an object on the wall); 1.5",
+              0.001, 1000.0);
+}
+
 std::vector<int> MapExpansionResult::Touched() const {
   std::vector<int> all = created;
   all.insert(all.end(), extended.begin(), extended.end());

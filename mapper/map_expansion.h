@@ -16,6 +16,7 @@
 #include <array>
 #include <vector>
 
+#include "common/config.h"
 #include "common/pose2.h"
 #include "mapper/contour_map.h"
 #include "mapper/scan_preprocessing.h"
@@ -45,6 +46,8 @@ struct MapExpansionOptions {
 };
 
 std::string ValidateOptions(const MapExpansionOptions& options);
+// Declares every field of `o` under `scope` (unit, default, range, why): config keys and flags.
+void DeclareOptions(OptionScope scope, MapExpansionOptions& o);
 
 struct MapExpansionResult {
   std::vector<int> created;    // ids of new contours

@@ -19,6 +19,21 @@ std::string ValidateOptions(const MappingSessionOptions& o) {
   return why.str();
 }
 
+void DeclareOptions(OptionScope s, MappingSessionOptions& o) {
+  DeclareOptions(s.Nested("mapper"), o.mapper);
+  s.AddDouble("insert_min_translation", &o.insert_min_translation, "m",
+              "insert a scan when the vehicle moved this far since the last inserted one, track the others (their "
+              "poses are reported, the map is untouched); 0 = off; both off = insert every scan (survey)",
+              0.0, 1000.0);
+  s.AddDouble("insert_min_rotation", &o.insert_min_rotation, "rad",
+              "insert a scan when the heading changed this much since the last inserted one; 0 = off",
+              0.0, 3.2);
+  s.AddInt("refine_every_inserts", &o.refine_every_inserts,
+           "concurrent refinement after every this many inserts, at a deterministic point of the scan sequence; "
+           "0 = only when asked (at the end) [inserts]",
+           0, 1000000);
+}
+
 const char* ToString(ScanOutcome outcome) {
   switch (outcome) {
     case ScanOutcome::kInserted:
@@ -193,6 +208,10 @@ ConcurrentRefinementResult MappingSession::Refine() { return AfterRefine(mapper_
 
 ConcurrentRefinementResult MappingSession::Refine(const ShouldStop& should_stop) {
   return AfterRefine(mapper_.Refine(should_stop));
+}
+
+ConcurrentRefinementResult MappingSession::RefineWith(const ConcurrentRefinementOptions& refinement) {
+  return AfterRefine(mapper_.RefineWith(refinement));
 }
 
 ConcurrentRefinementResult MappingSession::AfterRefine(ConcurrentRefinementResult r) {

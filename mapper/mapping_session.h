@@ -23,6 +23,7 @@
 #include <string>
 #include <vector>
 
+#include "common/config.h"
 #include "common/file_io.h"
 #include "common/match_result.h"
 #include "common/pose2.h"
@@ -45,6 +46,8 @@ struct MappingSessionOptions {
 };
 
 std::string ValidateOptions(const MappingSessionOptions& options);
+// Declares every field of `o` under `scope` (unit, default, range, why): config keys and flags.
+void DeclareOptions(OptionScope scope, MappingSessionOptions& o);
 
 enum class ScanOutcome { kInserted, kTracked, kRefused };
 const char* ToString(ScanOutcome outcome);
@@ -103,6 +106,8 @@ class MappingSession {
   ConcurrentRefinementResult Refine();
   // The same with another stop test in place of the options' (empty: run to the end).
   ConcurrentRefinementResult Refine(const ShouldStop& should_stop);
+  // The same with other refinement options in place of options().mapper.refinement.
+  ConcurrentRefinementResult RefineWith(const ConcurrentRefinementOptions& refinement);
 
   const MappingSessionOptions& options() const { return options_; }
   const ContourMapper& mapper() const { return mapper_; }

@@ -11,6 +11,7 @@
 namespace minenav::mapper {
 namespace {
 
+using testing::DriftingOdometry;
 using testing::MakeScan;
 using testing::ScanSpec;
 using testing::SmallRoomWorld;
@@ -24,17 +25,6 @@ LadarScan NoisyScan(const Pose2& truth, unsigned seed, int64_t utime) {
   scan.utime = utime;
   scan.scan_id = utime / 1000;
   return scan;
-}
-
-// Odometry that drifts: each step's true motion with a 2 % scale error and a small turn
-// bias, accumulated from the first true pose (the odometry frame is the world frame at start).
-std::vector<Pose2> DriftingOdometry(const std::vector<Pose2>& truth) {
-  std::vector<Pose2> odo{truth.front()};
-  for (size_t k = 1; k < truth.size(); ++k) {
-    const Pose2 step = Between(truth[k - 1], truth[k]);
-    odo.push_back(odo.back() * Pose2(1.02 * step.x, 1.02 * step.y, step.theta + 0.004));
-  }
-  return odo;
 }
 
 const std::vector<Pose2> kStations = {{3, 9, 0.3},      {9, 9.5, -0.5},   {17, 9, 2.0},

@@ -32,6 +32,56 @@ std::string ValidateOptions(const PoseEstimationOptions& o) {
   return why.str();
 }
 
+void DeclareOptions(OptionScope s, PoseEstimationOptions& o) {
+  s.AddDouble("initial_threshold", &o.initial_threshold, "m",
+              "correspondence threshold of the first iteration, about the largest initial error expected: 3 m "
+              "covers dead-reckoned survey stations (thesis 5.2), 0.5 m a pose already close (refinement, "
+              "tracking with odometry), where a larger one lets far clutter pull the estimate",
+              0.001, 100.0);
+  s.AddDouble("final_threshold", &o.final_threshold, "m",
+              "the threshold shrinks to this, a few sigma of the range noise: 0.1 m for the Typhoon's "
+              "4.4 cm, 0.05 m for a SICK's 1 cm",
+              0.001, 100.0);
+  s.AddDouble("threshold_factor", &o.threshold_factor, "1",
+              "factor applied to the threshold every iteration (0 < f <= 1); 0.9 takes 3 m to 0.1 m in "
+              "about 32 iterations, slowly enough that the matches follow the pose",
+              0.01, 1.0);
+  s.AddInt("max_iterations", &o.max_iterations,
+           "iteration limit (termination 4); 120 leaves room for the shrinking iterations and the "
+           "descent at the final threshold [iterations]",
+           1, 100000);
+  s.AddDouble("gradient_tolerance", &o.gradient_tolerance, "m",
+              "termination 1: the gradient per matched length (a mean offset) below this ends the search once "
+              "the threshold is final; 1e-6 m is far below the sensor noise",
+              0.0, 1.0);
+  s.AddDouble("step_resolution", &o.step_resolution, "m",
+              "line-search resolution; both steps below it end the search (termination 2); 1e-4 m, "
+              "far below the sensor noise",
+              1e-9, 1.0);
+  s.AddDouble("min_translation_change", &o.min_translation_change, "m",
+              "termination 3: a pose change below this and min_rotation_change ends the search; 2e-5 m",
+              0.0, 1.0);
+  s.AddDouble("min_rotation_change", &o.min_rotation_change, "rad",
+              "termination 3, heading part; 2e-6 rad: 2e-5 m at 10 m", 0.0, 1.0);
+  s.AddInt("min_pieces", &o.min_pieces,
+           "fewer error pieces than this: no estimate (too little overlap with the map to determine three pose "
+           "parameters); 20 for a new scan, 10 in refinement, where the pose is already close [pieces]",
+           1, 1000000);
+  s.AddDouble("heading_search_range", &o.heading_search_range, "rad",
+              "before the line searches, score headings within +- this of the initial one by the points that find "
+              "a contour within initial_threshold and start from the best; 0 = off, the thesis's "
+              "estimator; odometry that lags turns (MIT CSAIL) needs 20 degrees",
+              0.0, kPi);
+  s.AddDouble("heading_search_step", &o.heading_search_step, "rad",
+              "step of the heading search; 2 degrees moves points at 10 m by 0.35 m, within the "
+              "threshold that then refines them",
+              1e-6, kPi);
+  s.AddDouble("heading_search_margin", &o.heading_search_margin, "1",
+              "another heading must match this fraction more points than the initial one to win; 0.05 "
+              "keeps noise from moving a good start",
+              0.0, 10.0);
+}
+
 namespace {
 
 // The pieces of one correspondence, with their geometry copied out for fast re-evaluation.

@@ -12,6 +12,7 @@
 
 #include <string>
 
+#include "common/config.h"
 #include "common/match_result.h"
 #include "common/pose2.h"
 #include "mapper/contour_map.h"
@@ -54,6 +55,8 @@ struct PoseEstimationOptions {
 };
 
 std::string ValidateOptions(const PoseEstimationOptions& options);
+// Declares every field of `o` under `scope` (unit, default, range, why): config keys and flags.
+void DeclareOptions(OptionScope scope, PoseEstimationOptions& o);
 
 // How well a scan at a pose fits the map under a threshold.
 struct ScanFit {

@@ -22,6 +22,26 @@ std::string ValidateOptions(const PoseGraphOptions& o) {
   return why.str();
 }
 
+void DeclareOptions(OptionScope s, PoseGraphOptions& o) {
+  s.AddInt("max_iterations", &o.max_iterations,
+           "Levenberg-Marquardt iteration limit; loop closure allows 100, since Huber reweighting slows "
+           "convergence [iterations]",
+           1, 100000);
+  s.AddDouble("min_translation_step", &o.min_translation_step, "m",
+              "converged when no pose moves more than this (and min_rotation_step) in an iteration; 1e-6 m",
+              0.0, 1.0);
+  s.AddDouble("min_rotation_step", &o.min_rotation_step, "rad", "heading part of the convergence test; 1e-7 rad",
+              0.0, 1.0);
+  s.AddDouble("initial_damping", &o.initial_damping, "1",
+              "Levenberg-Marquardt damping relative to the diagonal of the normal equations; 1e-4 starts "
+              "close to Gauss-Newton",
+              0.0, 1e6);
+  s.AddDouble("huber_scale", &o.huber_scale, "1",
+              "Mahalanobis length above which an edge's weight falls off as Huber's (0 = plain least squares); "
+              "loop closure uses 3, so a false registration bends the solution little before the gate drops it",
+              0.0, 1000.0);
+}
+
 EdgeResidual ComputeEdgeResidual(const Pose2& from, const Pose2& to, const Pose2& z) {
   EdgeResidual r;
   const Eigen::Matrix2d ri_t = from.rotation().transpose();

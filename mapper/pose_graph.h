@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "common/config.h"
 #include "common/pose2.h"
 
 namespace minenav::mapper {
@@ -52,6 +53,8 @@ struct PoseGraphOptions {
 };
 
 std::string ValidateOptions(const PoseGraphOptions& options);
+// Declares every field of `o` under `scope` (unit, default, range, why): config keys and flags.
+void DeclareOptions(OptionScope scope, PoseGraphOptions& o);
 
 struct PoseGraphResult {
   std::vector<Pose2> poses;

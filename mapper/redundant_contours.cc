@@ -23,6 +23,21 @@ Eigen::Vector2d VertexNormal(const Contour& c, int v) {
 
 }  // namespace
 
+void DeclareOptions(OptionScope s, RedundantContourOptions& o) {
+  s.AddDouble("distance", &o.distance, "m",
+              "a vertex this close to another contour's segment facing the same way may be a copy; 0.4 m: "
+              "more than the drift to close, less than the gap between distinct walls",
+              0.0, 100.0);
+  s.AddDouble("min_alignment", &o.min_alignment, "1",
+              "cosine of the largest angle between the two contours' normals (same facing); 0.8 (37 "
+              "degrees)",
+              -1.0, 1.0);
+  s.AddDouble("min_run_length", &o.min_run_length, "m",
+              "only runs of redundant vertices this long along the contour are removed, so a post or crib beside a "
+              "wall is not taken for a copy of it; 1 m",
+              0.0, 1000.0);
+}
+
 int RemoveRedundantContours(ContourMap& map, const RedundantContourOptions& o) {
   int removed = 0;
   std::vector<int> ids = map.Ids();

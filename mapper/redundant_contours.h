@@ -7,6 +7,7 @@
 // lie within `distance` of a segment of an older one facing the same way, splitting the
 // newer contour around them; the scans that built it then correspond to the older one.
 
+#include "common/config.h"
 #include "mapper/contour_map.h"
 
 namespace minenav::mapper {
@@ -22,6 +23,9 @@ struct RedundantContourOptions {
   // copy of the wall, nor the wall for a copy of it.
   double min_run_length = 1.0;
 };
+
+// Declares every field of `o` under `scope` (unit, default, range, why): config keys and flags.
+void DeclareOptions(OptionScope scope, RedundantContourOptions& o);
 
 // Returns the number of vertices removed.
 int RemoveRedundantContours(ContourMap& map, const RedundantContourOptions& options = {});

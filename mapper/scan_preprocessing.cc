@@ -29,6 +29,37 @@ std::string ValidateOptions(const ScanPreprocessingOptions& o) {
   return why.str();
 }
 
+void DeclareOptions(OptionScope s, ScanPreprocessingOptions& o) {
+  s.AddDouble("min_range", &o.min_range, "m",
+              "readings below this are discarded; 0 = the scan's own min_range (the limit the sensor reports)",
+              0.0, 1000.0);
+  s.AddDouble("max_range", &o.max_range, "m",
+              "readings above this are discarded; 0 = the scan's own max_range (far readings through "
+              "doors and windows carry most mixed pixels: sparse scans want a limit, CARMEN 40 m)",
+              0.0, 1000.0);
+  s.AddInt("median_filter_size", &o.median_filter_size,
+           "odd number of readings in the range median filter (4.2); 1 = off: the thesis found it useful for "
+           "the Cyclone, not for the Typhoon [readings]",
+           1, 101);
+  s.AddDouble("discontinuity_threshold", &o.discontinuity_threshold, "m",
+              "consecutive points farther apart start a new partial scan; 0.5 m is wider than the spacing of a "
+              "dense scan's points along a wall",
+              0.001, 100.0);
+  s.AddDouble("discontinuity_angle", &o.discontinuity_angle, "rad",
+              "range-adaptive break (adaptive breakpoint detector): after a reading at range r the gap may reach "
+              "r sin(dphi) / sin(this - dphi), the gap of a wall seen at this incidence; 0 = the fixed "
+              "threshold alone (thesis); sparse 1-degree scans want 10 degrees, else far walls fall apart",
+              0.0, 1.57);
+  s.AddInt("min_points_per_partial_scan", &o.min_points_per_partial_scan,
+           "partial scans with fewer points are dropped (isolated mixed pixels, clutter); 4 keeps "
+           "short real walls and drops single stray returns [points]",
+           2, 1000000);
+  s.AddDouble("min_point_spacing", &o.min_point_spacing, "m",
+              "density reduction (7.2.3): within a partial scan keep a point only this far from the last kept "
+              "one; 0 = off, every point is kept",
+              0.0, 10.0);
+}
+
 int PreprocessedScan::NumPoints() const {
   int n = 0;
   for (const PartialScan& p : partial_scans) n += static_cast<int>(p.points.size());

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "common/config.h"
 #include "common/scan.h"
 
 namespace minenav::mapper {
@@ -42,6 +43,8 @@ struct ScanPreprocessingOptions {
 
 // Returns an empty string when the options are usable, else a one-line reason.
 std::string ValidateOptions(const ScanPreprocessingOptions& options);
+// Declares every field of `o` under `scope` (unit, default, range, why): config keys and flags.
+void DeclareOptions(OptionScope scope, ScanPreprocessingOptions& o);
 
 // A sequential run of scan points with no discontinuity, in the vehicle frame.
 struct PartialScan {

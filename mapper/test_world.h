@@ -78,6 +78,17 @@ inline std::vector<Pose2> LoopStations() {
           {19.5, 13.5, 3.14}, {13.5, 13.5, 3.14}, {7.5, 13.5, 3.14}, {2.5, 13.5, -1.57}, {2.5, 8.0, -1.57}};
 }
 
+// Odometry that drifts: each step's true motion with a 2 % scale error and a small turn
+// bias, accumulated from the first true pose (the odometry frame is the world frame at start).
+inline std::vector<Pose2> DriftingOdometry(const std::vector<Pose2>& truth) {
+  std::vector<Pose2> odo{truth.front()};
+  for (size_t k = 1; k < truth.size(); ++k) {
+    const Pose2 step = Between(truth[k - 1], truth[k]);
+    odo.push_back(odo.back() * Pose2(1.02 * step.x, 1.02 * step.y, step.theta + 0.004));
+  }
+  return odo;
+}
+
 // The true contours of SmallRoomWorld, oriented with free space on the left: the room
 // counter-clockwise, the pillars clockwise; vertices every `nominal` metres.
 inline ContourMap SmallRoomContours(double nominal = 0.5) {
