@@ -10,6 +10,7 @@
 //   slab_cut   at the face, shifted sideways across the entry (one side to the other);
 //   back_out   from the face backwards round the corner into the crosscut behind;
 //   turn       from an entry 12 m before a crossing into the crosscut, 12 m past it;
+//   long_entry along a whole entry (101 m), lateral offset and heading changed at the ends;
 //   long       across the section, corner to corner (> 100 m straight-line distance).
 // Each request is planned twice: "cold" (the first request to that goal) and "warm" (the same
 // request again: what the planner keeps between requests to one goal). Times are thread CPU
@@ -90,20 +91,24 @@ Pose2 NudgeFree(const Se2Planner& planner, Pose2 p, const Eigen::Vector2d& step,
 
 int Run(int argc, char** argv) {
   int seeds = 3, instances = 4;
-  double deadline = 10.0;
-  bool grid = true;
+  double deadline = 10.0, displacement = 0.1, clearance = 0.05;
+  bool grid = true, shot_heuristic = true;
   std::string json_out;
   minenav::ConfigSchema schema("planner_bench", "SE(2) planner on the synthetic mine's maneuvers and the grid search on Moving AI.");
   schema.AddInt("seeds", &seeds, "synthetic mines (seeds 1..n)", 1, 100);
   schema.AddInt("instances", &instances, "requests per scenario and mine", 1, 100);
   schema.AddDouble("deadline", &deadline, "s", "CPU time after which one SE(2) request is stopped", 0.01, 1000.0);
+  schema.AddDouble("displacement", &displacement, "m", "the mine walls' fractal midpoint displacement (sim/mine_generator.h)", 0.0, 1.0);
+  schema.AddDouble("clearance", &clearance, "m", "the planner's clearance", 0.0, 1.0);
+  schema.AddBool("shot_heuristic", &shot_heuristic, "the planner's shot_heuristic option");
   schema.AddBool("grid", &grid, "run the Moving AI section");
   schema.AddString("json_out", &json_out, "write the results as JSON to this file ('' = none)");
   if (schema.Parse(argc, argv) == minenav::ParseOutcome::kExit) return 0;
 
   const minenav::Footprint miner = minenav::Footprint::Rectangle(3.3, 10.0);
   minenav::Se2PlannerOptions options;
-  options.clearance = 0.1;
+  options.clearance = clearance;
+  options.shot_heuristic = shot_heuristic;
   minenav::SearchLimits limits;
   limits.max_expansions = 1'000'000;
   double stop_at = 0.0;
@@ -119,6 +124,7 @@ int Run(int argc, char** argv) {
     mine.pillar_cols = 6;
     mine.pillar_size = kPillar;
     mine.room_width = kRoom;
+    mine.midpoint_displacement = displacement;
     mine.seed = static_cast<uint64_t>(seed);
     const std::vector<Segment> plain = minenav::GenerateRoomAndPillarMine(mine);
     const Eigen::Vector2d size = minenav::MinePanelSize(mine);
@@ -162,6 +168,12 @@ int Run(int argc, char** argv) {
       const double side = i % 2 == 0 ? 1.0 : -1.0;
       requests.push_back({"turn", &open, Pose2(CrosscutX(c) - 12.0, EntryY(k) + lateral(rng), yaw(rng)),
                           Pose2(CrosscutX(c), EntryY(k) + side * 12.0, side * kPi / 2)});
+    }
+    // Along a whole entry, > 100 m, with a lateral offset and a heading change at the ends.
+    for (int i = 0; i < instances; ++i) {
+      const int k = i % 5;
+      requests.push_back({"long_entry", &open, Pose2(6.5, EntryY(k) + lateral(rng), yaw(rng)),
+                          Pose2(size.x() - 6.5, EntryY(k) + lateral(rng), yaw(rng))});
     }
     // Across the section, corner to corner.
     for (int i = 0; i < instances; ++i) {
@@ -219,11 +231,11 @@ int Run(int argc, char** argv) {
   j["setup_s_median"] = bench::Median(setup_s);
   std::printf("planner_bench: %d mines of 4 x 6 pillars, %zu SE(2) requests, planner setup median %.3f s\n", seeds,
               requests.size(), bench::Median(setup_s));
-  std::printf("%-9s %4s %6s %9s %9s %9s %9s %9s %8s %6s %9s %7s\n", "scenario", "n", "found", "cold med", "cold p95",
+  std::printf("%-10s %4s %6s %9s %9s %9s %9s %9s %8s %6s %9s %7s\n", "scenario", "n", "found", "cold med", "cold p95",
               "cold max", "warm med", "expans.", "length", "rev.", "states", "MB");
-  std::printf("%-9s %4s %6s %9s %9s %9s %9s %9s %8s %6s %9s %7s\n", "", "", "", "(ms)", "(ms)", "(ms)", "(ms)", "(med)",
+  std::printf("%-10s %4s %6s %9s %9s %9s %9s %9s %8s %6s %9s %7s\n", "", "", "", "(ms)", "(ms)", "(ms)", "(ms)", "(med)",
               "(m,med)", "(med)", "(max)", "(max)");
-  for (const std::string name : {"box_cut", "slab_cut", "back_out", "turn", "long"}) {
+  for (const std::string name : {"box_cut", "slab_cut", "back_out", "turn", "long_entry", "long"}) {
     std::vector<double> cold, warm, expansions, length, reversals;
     double states = 0.0;
     int n = 0, ok = 0;
@@ -241,7 +253,7 @@ int Run(int argc, char** argv) {
       reversals.push_back(o.reversals);
     }
     const double mb = states * kBytesPerState / 1e6;
-    std::printf("%-9s %4d %6d %9.2f %9.2f %9.2f %9.2f %9.0f %8.1f %6.1f %9.0f %7.1f\n", name.c_str(), n, ok,
+    std::printf("%-10s %4d %6d %9.2f %9.2f %9.2f %9.2f %9.0f %8.1f %6.1f %9.0f %7.1f\n", name.c_str(), n, ok,
                 bench::Median(cold), Percentile(cold, 0.95), bench::Max(cold), bench::Median(warm),
                 bench::Median(expansions), bench::Median(length), bench::Median(reversals), states, mb);
     j["se2"][name] = {{"requests", n},
