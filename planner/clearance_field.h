@@ -6,6 +6,8 @@
 // vehicle's centre can be at all.
 
 #include <Eigen/Core>
+#include <cmath>
+#include <limits>
 #include <vector>
 
 #include "common/geometry.h"
@@ -27,10 +29,30 @@ class ClearanceField {
   double At(const Eigen::Vector2d& p) const { return AtCell(frame_.CellX(p.x()), frame_.CellY(p.y())); }
   // m: the true clearance anywhere in a cell is within this of its value (up to the cap).
   double Slack() const { return 0.5 * std::sqrt(2.0) * frame_.cell; }
+  // m, bounds on the true clearance at p from the value at the centre c of p's cell and the
+  // distance is 1-Lipschitz: true(p) >= value - |p - c| (a capped value is below the truth
+  // too), and, where the value is under the cap, true(p) <= value + |p - c|. Outside the
+  // frame: -infinity and +infinity (nothing known).
+  double LowerBound(const Eigen::Vector2d& p) const {
+    const int ix = frame_.CellX(p.x()), iy = frame_.CellY(p.y());
+    if (!frame_.Contains(ix, iy)) return -std::numeric_limits<double>::infinity();
+    return values_[static_cast<size_t>(frame_.Index(ix, iy))] - OffsetFromCentre(p, ix, iy);
+  }
+  double UpperBound(const Eigen::Vector2d& p) const {
+    const int ix = frame_.CellX(p.x()), iy = frame_.CellY(p.y());
+    if (!frame_.Contains(ix, iy)) return std::numeric_limits<double>::infinity();
+    const double v = values_[static_cast<size_t>(frame_.Index(ix, iy))];
+    return v < max_distance_ ? v + OffsetFromCentre(p, ix, iy) : std::numeric_limits<double>::infinity();
+  }
   double max_distance() const { return max_distance_; }
   const GridFrame& frame() const { return frame_; }
 
  private:
+  double OffsetFromCentre(const Eigen::Vector2d& p, int ix, int iy) const {
+    const double dx = p.x() - (frame_.x0 + (ix + 0.5) * frame_.cell), dy = p.y() - (frame_.y0 + (iy + 0.5) * frame_.cell);
+    return std::sqrt(dx * dx + dy * dy);
+  }
+
   GridFrame frame_;
   double max_distance_;
   std::vector<double> values_;

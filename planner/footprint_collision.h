@@ -1,14 +1,22 @@
 #pragma once
 // Does the vehicle's polygon at a pose come within `margin` of a wall? Decided in three
 // steps (the clearance field first, exact geometry only where it cannot tell):
-//   clearance at the pose > circumscribed radius + margin (+ the field's slack): free;
-//   clearance at the pose < inscribed radius + margin (- the slack): in collision (a wall
-//     passes through the disc that the polygon contains, or within margin of it);
-//   otherwise: the exact polygon-against-segment test against the walls near the pose
-//     (common/segment_index.h): a wall end inside the polygon, or a wall within margin of an
-//     edge, is a collision.
+//   free      every disc of a cover of the polygon (a chain of discs along its long axis,
+//             the Hybrid-A* / Nav2 Smac trick) has a centre whose clearance is surely above
+//             the disc's radius + margin (ClearanceField::LowerBound): no wall comes within
+//             margin of any point of the discs, so none of the polygon;
+//   blocked   some point q known inside the polygon, at distance e from its boundary (the
+//             pose's origin with the inscribed radius, the disc centres inside), has a
+//             clearance surely below e + margin (ClearanceField::UpperBound): a wall is inside
+//             the polygon or within margin of its boundary;
+//   otherwise the exact polygon-against-segment test against the walls near the pose
+//             (common/segment_index.h): a wall end inside the polygon, or a wall within margin
+//             of an edge, is a collision.
+// Both field decisions are implied by the exact test's answer, so the field changes the time
+// a check takes, never its result (planner_test checks that against brute force).
 
 #include <cstdint>
+#include <vector>
 
 #include "common/pose2.h"
 #include "common/segment_index.h"
@@ -27,17 +35,40 @@ struct CollisionCounters {
 // Distance between two segments (0 when they meet).
 double SegmentToSegmentDistance(const Segment& s, const Segment& t);
 
+// A disc in the vehicle frame (m).
+struct Disc {
+  Eigen::Vector2d centre = Eigen::Vector2d::Zero();
+  double radius = 0.0;
+};
+
+// `count` discs that together hold the polygon: its bounding box cut across its longer side
+// into `count` equal slices, each slice's disc about the slice's centre with half its
+// diagonal as radius (a 10 x 3.3 m rectangle, 8 discs: radius 1.76 m, 0.11 m more than the
+// half width). count >= 1.
+std::vector<Disc> DiscCover(const Footprint& footprint, int count);
+
+// The result of one check: collides, or free with `spare` m to spare: every point of the
+// polygon may move up to `spare` and stay free (0 when the exact test decided).
+struct PoseCheck {
+  bool collides = false;
+  double spare = 0.0;
+};
+
 class FootprintCollisionChecker {
  public:
-  // `walls` and `field` must outlive the checker. margin in m (>= 0).
+  // `walls` and `field` must outlive the checker. margin in m (>= 0); discs >= 1 for the cover.
   FootprintCollisionChecker(const StaticSegmentIndex& walls, const ClearanceField& field, Footprint footprint,
-                            double margin);
+                            double margin, int discs = 8);
 
-  bool Collides(const Pose2& pose) const;
+  bool Collides(const Pose2& pose) const { return Check(pose).collides; }
+  PoseCheck Check(const Pose2& pose) const { return Check(pose, std::cos(pose.theta), std::sin(pose.theta)); }
+  // The same with the heading's cosine and sine given (the planner's precomputed sweeps).
+  PoseCheck Check(const Pose2& pose, double cos_theta, double sin_theta) const;
   // The exact test alone (no field), for tests and for poses the field does not cover.
   bool CollidesExactly(const Pose2& pose) const;
 
   const Footprint& footprint() const { return footprint_; }
+  const std::vector<Disc>& discs() const { return discs_; }
   double inscribed_radius() const { return inscribed_; }
   double circumscribed_radius() const { return circumscribed_; }
   double margin() const { return margin_; }
@@ -48,6 +79,8 @@ class FootprintCollisionChecker {
   const ClearanceField& field_;
   Footprint footprint_;
   double margin_, inscribed_, circumscribed_;
+  std::vector<Disc> discs_;
+  std::vector<Disc> inside_;  // points inside the polygon, radius = their distance to its boundary
   mutable CollisionCounters counters_;
   mutable std::vector<Eigen::Vector2d> world_;  // the polygon at the pose being tested
 };

@@ -1,6 +1,7 @@
 #include "planner/se2_planner.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <queue>
@@ -33,7 +34,69 @@ struct Node {
   double amount = 0.0;
   int8_t direction = 0;  // last drive direction on the way here (+1, -1, 0 none yet)
   bool closed = false;
+  int16_t heading = 0;  // heading bin: theta = start theta + heading * bin
+  double spare = 0.0;   // m every point of the polygon may move from here and stay free
 };
+
+// Does a sweep collide? Poses 1..n, `spacing` m apart for the farthest point of the polygon;
+// check(i) checks pose i. A pose free with s m to spare covers every pose within s + step / 2
+// of it (the margin holds half a collision step), so the next checked pose may lie s + step
+// beyond it: where the field says the polygon is far from the walls most poses are skipped.
+// `spare0` is the spare of the start pose (0 when unknown). `spare_end` gets the end pose's.
+template <typename Check>
+bool SweepCollides(int n, double spacing, double step, double spare0, Check check, double* spare_end) {
+  double spare = spare0, reached = 0.0;
+  int i = 0;
+  while (i < n) {
+    const double limit = reached + spare + step;
+    const int j = std::min(n, std::max(i + 1, static_cast<int>(std::floor(limit / spacing + 1e-9))));
+    const PoseCheck c = check(j);
+    if (c.collides) return true;
+    spare = c.spare;
+    reached = j * spacing;
+    i = j;
+  }
+  if (spare_end) *spare_end = spare;
+  return false;
+}
+
+// m the farthest point of the polygon (within rc of the pose) moves along the piece.
+double Sweep(const MotionPiece& piece, double rc) {
+  if (piece.motion == Motion::kTurnInPlace) return rc * std::abs(piece.amount);
+  if (IsArc(piece.motion)) return piece.amount * (piece.radius + rc) / piece.radius;
+  return piece.amount;
+}
+
+// The lower bound on the cost from p to the goal without obstacles (admissible): at least the
+// distance d driven (at min(1, reverse_factor) per metre) and the heading difference turned,
+// by arcs (1 / R rad per metre, which also covers distance) or in place; the cheapest mix
+// drives d on arcs and turns the rest in place or on further arcs, whichever costs less.
+double FreeSpaceLowerBound(const Pose2& p, const Pose2& goal, double r, const MotionCosts& costs) {
+  const double k = std::min(1.0, costs.reverse_factor);
+  const double d = std::hypot(goal.x - p.x, goal.y - p.y);
+  const double turn = std::abs(NormalizeAngle(goal.theta - p.theta));
+  return k * d + std::min(k * r, costs.turn_in_place_per_rad) * std::max(0.0, turn - d / r);
+}
+
+// The largest ratio of the 8-connected grid distance to the straight-line distance
+// (1 / cos 22.5 deg): the 2-D distances divided by it do not overestimate.
+constexpr double kOctileStretch = 1.0823922002923940;
+
+constexpr int kPrimitives = 8;
+// The motions of one step: each straight move and arc as long as the arc that turns one bin.
+std::array<MotionPiece, kPrimitives> Primitives(double r, double bin) {
+  const double step = r * bin;
+  return {{{Motion::kForward, step, 0.0, {}},
+           {Motion::kReverse, step, 0.0, {}},
+           {Motion::kArcLeft, step, r, {}},
+           {Motion::kArcRight, step, r, {}},
+           {Motion::kArcLeftReverse, step, r, {}},
+           {Motion::kArcRightReverse, step, r, {}},
+           {Motion::kTurnInPlace, bin, 0.0, {}},
+           {Motion::kTurnInPlace, -bin, 0.0, {}}}};
+}
+// Heading bins each primitive turns.
+constexpr int kHeadingChange[kPrimitives] = {0, 0, 1, -1, -1, 1, 1, -1};
 
 struct OpenEntry {
   double f;
@@ -54,6 +117,8 @@ std::string ValidateOptions(const Se2PlannerOptions& o) {
            " m) must leave its xy cell: make xy_resolution smaller than step / sqrt(2)";
   if (!(o.collision_step > 0.0)) return "collision_step must be > 0";
   if (o.analytic_shot_interval < 1) return "analytic_shot_interval must be >= 1";
+  if (o.collision_discs < 1 || o.collision_discs > 64) return "collision_discs must be in [1, 64]";
+  if (o.cached_goals < 1 || o.cached_goals > 64) return "cached_goals must be in [1, 64]";
   return "";
 }
 
@@ -66,6 +131,11 @@ void DeclareOptions(OptionScope scope, Se2PlannerOptions& o) {
                   10.0);
   scope.AddDouble("collision_step", &o.collision_step, "m", "most any point of the polygon moves between checked poses",
                   0.001, 1.0);
+  scope.AddInt("collision_discs", &o.collision_discs, "discs of the polygon's cover for the field's quick decisions",
+               1, 64);
+  scope.AddBool("shot_heuristic", &o.shot_heuristic,
+                "add the cheapest obstacle-free analytic shot to the heuristic (faster, may overestimate)");
+  scope.AddInt("cached_goals", &o.cached_goals, "goals whose 2-D obstacle heuristic is kept between requests", 1, 64);
   scope.AddInt("analytic_shot_interval", &o.analytic_shot_interval, "expansions between analytic shots", 1, 1000000);
   scope.AddDouble("analytic_shot_max_length", &o.analytic_shot_max_length, "m", "longer analytic shots are not tried",
                   0.0, 1e6);
@@ -102,7 +172,7 @@ Se2Planner::Se2Planner(std::vector<Segment> map, Footprint footprint, Se2Planner
   const GridFrame frame = GridFrame::Covering(lo, hi, options_.field_resolution, 0.0);
   const double slack = 0.5 * std::sqrt(2.0) * options_.field_resolution;
   field_ = std::make_unique<ClearanceField>(walls, frame, CircumscribedRadius(footprint_) + margin + 3.0 * slack);
-  checker_ = std::make_unique<FootprintCollisionChecker>(*walls_, *field_, footprint_, margin);
+  checker_ = std::make_unique<FootprintCollisionChecker>(*walls_, *field_, footprint_, margin, options_.collision_discs);
   centre_cells_ = OccupancyGrid(frame.nx, frame.ny);
   for (int iy = 0; iy < frame.ny; ++iy)
     for (int ix = 0; ix < frame.nx; ++ix) {
@@ -115,18 +185,56 @@ Se2Planner::Se2Planner(std::vector<Segment> map, Footprint footprint, Se2Planner
 bool Se2Planner::PoseFree(const Pose2& pose) const { return checker_ && !checker_->Collides(pose); }
 
 bool Se2Planner::PieceCollides(const Pose2& from, const MotionPiece& piece) const {
-  const double rc = checker_->circumscribed_radius();
-  double sweep = piece.amount;  // m the farthest point of the polygon moves
-  if (piece.motion == Motion::kTurnInPlace)
-    sweep = rc * std::abs(piece.amount);
-  else if (IsArc(piece.motion))
-    sweep = piece.amount * (piece.radius + rc) / piece.radius;
+  const double sweep = Sweep(piece, checker_->circumscribed_radius());
   const int n = std::max(1, static_cast<int>(std::ceil(sweep / options_.collision_step)));
-  for (int k = 1; k <= n; ++k) {
-    const double f = static_cast<double>(k) / n;
-    if (checker_->Collides(PoseAfter(from, piece.motion, piece.amount * f, piece.radius))) return true;
+  const PoseCheck at_start = checker_->Check(from);
+  return SweepCollides(
+      n, sweep / n, options_.collision_step, at_start.collides ? 0.0 : at_start.spare,
+      [&](int i) {
+        return checker_->Check(PoseAfter(from, piece.motion, piece.amount * static_cast<double>(i) / n, piece.radius));
+      },
+      nullptr);
+}
+
+const std::vector<Se2Planner::SweptPrimitive>& Se2Planner::PrimitivesFor(double phase) const {
+  if (phase == primitives_phase_) return primitives_;
+  const int bins = options_.heading_bins;
+  const double bin = 2.0 * kPi / bins, rc = checker_->circumscribed_radius();
+  const auto primitives = Primitives(options_.turn_radius, bin);
+  primitives_.assign(static_cast<size_t>(bins * kPrimitives), {});
+  for (int k = 0; k < bins; ++k) {
+    const Pose2 from(0.0, 0.0, NormalizeAngle(phase + k * bin));
+    for (int m = 0; m < kPrimitives; ++m) {
+      const MotionPiece& piece = primitives[static_cast<size_t>(m)];
+      SweptPrimitive& swept = primitives_[static_cast<size_t>(k * kPrimitives + m)];
+      const double sweep = Sweep(piece, rc);
+      const int n = std::max(1, static_cast<int>(std::ceil(sweep / options_.collision_step)));
+      swept.spacing = sweep / n;
+      swept.end_heading = ((k + kHeadingChange[m]) % bins + bins) % bins;
+      for (int i = 1; i <= n; ++i) {
+        Pose2 p = PoseAfter(from, piece.motion, piece.amount * static_cast<double>(i) / n, piece.radius);
+        if (i == n) p.theta = NormalizeAngle(phase + swept.end_heading * bin);
+        swept.poses.push_back({p.x, p.y, p.theta, std::cos(p.theta), std::sin(p.theta)});
+      }
+    }
   }
-  return false;
+  primitives_phase_ = phase;
+  return primitives_;
+}
+
+LazyGridDistances& Se2Planner::DistancesTo(GridCell goal) const {
+  for (auto it = goal_distances_.begin(); it != goal_distances_.end(); ++it)
+    if ((*it)->source() == goal) {
+      if (it != goal_distances_.begin()) {
+        auto hit = std::move(*it);
+        goal_distances_.erase(it);
+        goal_distances_.push_front(std::move(hit));
+      }
+      return *goal_distances_.front();
+    }
+  goal_distances_.push_front(std::make_unique<LazyGridDistances>(centre_cells_, goal));
+  while (goal_distances_.size() > static_cast<size_t>(options_.cached_goals)) goal_distances_.pop_back();
+  return *goal_distances_.front();
 }
 
 std::string Se2Planner::CheckPose(const Pose2& pose, const std::string& what) const {
@@ -176,51 +284,53 @@ Se2PlanResult Se2Planner::Plan(const Pose2& start_in, const Pose2& goal_in, cons
     return result;
   };
 
-  // 2-D part of the heuristic: distances from the goal over the cells the centre may be in.
+  // 2-D part of the heuristic: distances from the goal over the cells the centre may be in,
+  // settled on demand and kept for the next request to the same goal cell.
   const GridFrame& frame = field_->frame();
-  const GridCell goal_cell{frame.CellX(goal.x), frame.CellY(goal.y)};
-  const std::vector<double> cells_to_goal = GridDistancesFrom(centre_cells_, goal_cell);
-  const auto distance_2d = [&](const Pose2& p) {
-    const int ix = frame.CellX(p.x), iy = frame.CellY(p.y);
-    if (!frame.Contains(ix, iy)) return kInf;
-    const double d = cells_to_goal[centre_cells_.Index(ix, iy)];
-    return d == kInf ? kInf : std::max(0.0, d * frame.cell - 2.0 * slack);
+  LazyGridDistances& to_goal = DistancesTo({frame.CellX(goal.x), frame.CellY(goal.y)});
+  const auto distance_2d = [&](double x, double y) {
+    const double d = to_goal.Distance(frame.CellX(x), frame.CellY(y));
+    return d == kInf ? kInf : std::max(0.0, d * frame.cell / (options_.shot_heuristic ? 1.0 : kOctileStretch) - 2.0 * slack);
   };
-  if (distance_2d(start) == kInf)
+  if (distance_2d(start.x, start.y) == kInf)
     return finish(SearchStatus::kNoPath,
                   "the goal is not reachable: no corridor wide enough for the footprint's inscribed circle joins "
                   "start and goal");
   const MotionCosts& costs = options_.costs;
   const double r = options_.turn_radius;
   const auto heuristic = [&](const Pose2& p, int direction) {
-    const double d2 = distance_2d(p);
+    const double d2 = distance_2d(p.x, p.y);
     if (d2 == kInf) return kInf;
-    const std::vector<AnalyticShot> shots = AnalyticShots(p, goal, r, costs, direction);
-    return std::max(d2, shots.empty() ? 0.0 : shots.front().cost);
+    double free_space = FreeSpaceLowerBound(p, goal, r, costs);
+    if (options_.shot_heuristic) {
+      const std::vector<AnalyticShot> shots = AnalyticShots(p, goal, r, costs, direction);
+      if (!shots.empty()) free_space = std::max(free_space, shots.front().cost);
+    }
+    return std::max(d2, free_space);
   };
 
-  // The motions of one step.
-  const double bin = 2.0 * kPi / options_.heading_bins, step = r * bin;
-  const MotionPiece primitives[] = {
-      {Motion::kForward, step, 0.0, {}},      {Motion::kReverse, step, 0.0, {}},
-      {Motion::kArcLeft, step, r, {}},        {Motion::kArcRight, step, r, {}},
-      {Motion::kArcLeftReverse, step, r, {}}, {Motion::kArcRightReverse, step, r, {}},
-      {Motion::kTurnInPlace, bin, 0.0, {}},   {Motion::kTurnInPlace, -bin, 0.0, {}}};
-
-  const auto key = [&](const Pose2& p) {
+  const int bins = options_.heading_bins;
+  const double bin = 2.0 * kPi / bins;
+  const auto primitives = Primitives(r, bin);
+  const std::vector<SweptPrimitive>& swept = PrimitivesFor(start.theta);
+  const auto key = [&](double x, double y, int heading) {
     const auto cell = [](double v, double res) {
       return static_cast<uint64_t>(static_cast<int64_t>(std::floor(v / res)) & 0x1FFFFF);
     };
-    const int h = static_cast<int>(std::lround((p.theta + kPi) / bin)) % options_.heading_bins;
-    return (cell(p.x, options_.xy_resolution) << 42) | (cell(p.y, options_.xy_resolution) << 21) |
-           static_cast<uint64_t>(h);
+    return (cell(x, options_.xy_resolution) << 42) | (cell(y, options_.xy_resolution) << 21) |
+           static_cast<uint64_t>(heading);
   };
+  const int goal_heading =
+      (static_cast<int>(std::lround(NormalizeAngle(goal.theta - start.theta) / bin)) % bins + bins) % bins;
+  const uint64_t goal_key = key(goal.x, goal.y, goal_heading);
 
   std::vector<Node> nodes;
   std::unordered_map<uint64_t, int32_t> best;  // state cell -> its best node
+  best.reserve(4096);
   std::priority_queue<OpenEntry> open;
-  nodes.push_back({start, 0.0, -1, Motion::kForward, 0.0, 0, false});
-  best[key(start)] = 0;
+  const PoseCheck at_start = checker_->Check(start);
+  nodes.push_back({start, 0.0, -1, Motion::kForward, 0.0, 0, false, 0, at_start.spare});
+  best[key(start.x, start.y, 0)] = 0;
   open.push({heuristic(start, 0), 0});
 
   const auto path_to = [&](int32_t n, const std::vector<MotionPiece>& tail) {
@@ -251,12 +361,12 @@ Se2PlanResult Se2Planner::Plan(const Pose2& start_in, const Pose2& goal_in, cons
     current.closed = true;
     ++result.expansions;
     const Pose2 pose = current.pose;
-    const double g = current.g;
-    const int direction = current.direction;
+    const double g = current.g, spare = current.spare;
+    const int direction = current.direction, heading = current.heading;
 
     // The analytic shot: the cheapest obstacle-free shots that are short enough, first free one wins.
     if (result.expansions % options_.analytic_shot_interval == 1 || options_.analytic_shot_interval == 1 ||
-        key(pose) == key(goal)) {
+        key(pose.x, pose.y, heading) == goal_key) {
       for (const AnalyticShot& shot : AnalyticShots(pose, goal, r, costs, direction)) {
         double length = 0.0;
         for (const MotionPiece& p : shot.pieces) length += p.motion == Motion::kTurnInPlace ? 0.0 : p.amount;
@@ -279,9 +389,12 @@ Se2PlanResult Se2Planner::Plan(const Pose2& start_in, const Pose2& goal_in, cons
       }
     }
 
-    for (const MotionPiece& primitive : primitives) {
-      const Pose2 next = PoseAfter(pose, primitive.motion, primitive.amount, primitive.radius);
-      const uint64_t k = key(next);
+    for (int m = 0; m < kPrimitives; ++m) {
+      const MotionPiece& primitive = primitives[static_cast<size_t>(m)];
+      const SweptPrimitive& sweep = swept[static_cast<size_t>(heading * kPrimitives + m)];
+      const SweptPose& end = sweep.poses.back();
+      const Pose2 next(pose.x + end.dx, pose.y + end.dy, end.theta);
+      const uint64_t k = key(next.x, next.y, sweep.end_heading);
       const int d = DriveDirection(primitive.motion);
       const double ng = g + PieceCost(primitive, direction, costs);
       const auto it = best.find(k);
@@ -289,12 +402,20 @@ Se2PlanResult Se2Planner::Plan(const Pose2& start_in, const Pose2& goal_in, cons
         const Node& other = nodes[static_cast<size_t>(it->second)];
         if (other.closed || other.g <= ng) continue;
       }
-      if (PieceCollides(pose, primitive)) continue;
+      double next_spare = 0.0;
+      const auto check = [&](int i) {
+        const SweptPose& q = sweep.poses[static_cast<size_t>(i - 1)];
+        return checker_->Check(Pose2(pose.x + q.dx, pose.y + q.dy, q.theta), q.cos_theta, q.sin_theta);
+      };
+      if (SweepCollides(static_cast<int>(sweep.poses.size()), sweep.spacing, options_.collision_step, spare, check,
+                        &next_spare))
+        continue;
       const int8_t next_direction = static_cast<int8_t>(d != 0 ? d : direction);
       const double h = heuristic(next, next_direction);
       if (h == kInf) continue;
       const int32_t index = static_cast<int32_t>(nodes.size());
-      nodes.push_back({next, ng, e.node, primitive.motion, primitive.amount, next_direction, false});
+      nodes.push_back({next, ng, e.node, primitive.motion, primitive.amount, next_direction, false,
+                       static_cast<int16_t>(sweep.end_heading), next_spare});
       best[k] = index;
       open.push({ng + h, index});
     }

@@ -20,6 +20,8 @@
 // Bounded by SearchLimits (expansions, stored states, stop callback); every answer says why.
 
 #include <cstdint>
+#include <deque>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -30,6 +32,7 @@
 #include "planner/clearance_field.h"
 #include "planner/footprint.h"
 #include "planner/footprint_collision.h"
+#include "planner/grid_dijkstra.h"
 #include "planner/motion.h"
 #include "planner/motion_costs.h"
 #include "planner/occupancy_grid.h"
@@ -46,6 +49,12 @@ struct Se2PlannerOptions {
   double xy_resolution = 0.1;     // m, side of the (x, y) cells of the visited-state hash. Default 0.1.
   double field_resolution = 0.2;  // m, cells of the clearance field and the 2-D heuristic. Default 0.2.
   double collision_step = 0.05;   // m, most any point of the polygon moves between checked poses. Default 0.05.
+  int collision_discs = 8;        // discs of the polygon's cover for the field's quick decisions. Default 8.
+  // Heuristic: true adds the cheapest obstacle-free analytic shot's cost (a strong guide
+  // towards the goal heading, but the shots are a subset of all paths, so it may overestimate);
+  // false uses an admissible closed-form bound instead (FreeSpaceLowerBound). Default true.
+  bool shot_heuristic = true;
+  int cached_goals = 4;           // goals whose 2-D heuristic is kept between requests. Default 4.
   int analytic_shot_interval = 5;       // expansions between analytic shots (1 = every one). Default 5.
   double analytic_shot_max_length = 30.0;  // m, longer shots are not tried. Default 30.
   MotionCosts costs;
@@ -74,6 +83,8 @@ class Se2Planner {
   // options or footprint: every Plan() answers kInvalidRequest with the reason.
   Se2Planner(std::vector<Segment> map, Footprint footprint, Se2PlannerOptions options);
 
+  // Not to be called from two threads at once on one planner (it keeps the heuristics of
+  // recent goals, the swept primitives and the collision counters).
   Se2PlanResult Plan(const Pose2& start, const Pose2& goal, const SearchLimits& limits = {}) const;
 
   // Is the pose clear of the walls with the requested clearance (plus the sampling half-step)?
@@ -89,8 +100,24 @@ class Se2Planner {
   Eigen::Vector2d map_min() const { return map_min_; }
   Eigen::Vector2d map_max() const { return map_max_; }
 
+ // One primitive from one heading: the poses to check along it, relative to its start
+  // position, no farther apart than collision_step for any point of the polygon.
+  struct SweptPose {
+    double dx, dy, theta, cos_theta, sin_theta;
+  };
+  struct SweptPrimitive {
+    std::vector<SweptPose> poses;  // the last is the end pose
+    double spacing = 0.0;          // m the farthest point of the polygon moves between poses
+    int end_heading = 0;           // heading bin of the end pose
+  };
+
  private:
   std::string CheckPose(const Pose2& pose, const std::string& what) const;
+  // The swept primitives for headings phase + k * bin, k = 0 .. heading_bins - 1 (cached for
+  // the last phase asked).
+  const std::vector<SweptPrimitive>& PrimitivesFor(double phase) const;
+  // The 2-D distances to the goal cell (cached for the last cached_goals goals).
+  LazyGridDistances& DistancesTo(GridCell goal) const;
 
   std::vector<Segment> map_;
   Footprint footprint_;
@@ -102,6 +129,9 @@ class Se2Planner {
   std::unique_ptr<FootprintCollisionChecker> checker_;
   OccupancyGrid centre_cells_;  // the field's cells where the vehicle's centre may be
   double largest_clearance_ = 0.0;
+  mutable double primitives_phase_ = std::numeric_limits<double>::quiet_NaN();
+  mutable std::vector<SweptPrimitive> primitives_;  // [heading * 8 + primitive]
+  mutable std::deque<std::unique_ptr<LazyGridDistances>> goal_distances_;  // most recent first
 };
 
 }  // namespace minenav

@@ -12,6 +12,7 @@
 
 #include "common/file_io.h"
 #include "planner/analytic_shot.h"
+#include "planner/grid_dijkstra.h"
 #include "planner/test_maps.h"
 #include "planner/testing/path_checker.h"
 
@@ -26,6 +27,17 @@ testing::PathCheckSettings CheckerFor(const Se2Planner& planner) {
   s.turn_radius = planner.options().turn_radius;
   s.clearance = planner.options().clearance;
   return s;
+}
+
+// Brute force: the independent checker at the one pose, and every vertex inside the map's box
+// [-half, half]^2 (the map ends there).
+bool BruteForceFree(const std::vector<Segment>& walls, const Pose2& p, const testing::PathCheckSettings& st,
+                    double half) {
+  for (const auto& v : st.polygon) {
+    const Eigen::Vector2d w = p * v;
+    if (std::abs(w.x()) > half || std::abs(w.y()) > half) return false;
+  }
+  return testing::CheckPath(walls, p, {}, st).ok;  // samples only the start pose
 }
 
 TEST(MotionTest, ArcsTurnAboutTheCentreOnTheirSide) {
@@ -128,18 +140,87 @@ TEST(FootprintCollisionTest, FieldAndExactTestAgreeWithBruteForce) {
   int free = 0, blocked = 0;
   for (int i = 0; i < 3000; ++i) {
     const Pose2 p(u(rng), u(rng), a(rng));
-    const auto report = testing::CheckPath(walls, p, {}, st);  // samples only the start pose
-    bool inside_box = true;
-    for (const auto& v : st.polygon) {
-      const Eigen::Vector2d w = p * v;
-      inside_box = inside_box && std::abs(w.x()) <= 20 && std::abs(w.y()) <= 20;
-    }
-    const bool brute_free = report.ok && inside_box;
-    EXPECT_EQ(planner.PoseFree(p), brute_free) << p << " clearance " << report.min_clearance;
+    const bool brute_free = BruteForceFree(walls, p, st, 20.0);
+    EXPECT_EQ(planner.PoseFree(p), brute_free) << p;
     (brute_free ? free : blocked)++;
   }
   EXPECT_GT(free, 50);
   EXPECT_GT(blocked, 1000);
+}
+
+TEST(FootprintCollisionTest, DiscCoverHoldsThePolygonAndDecidesMostPosesInAnEntry) {
+  const Footprint miner = Footprint::Rectangle(3.3, 10.0);
+  const std::vector<Disc> discs = DiscCover(miner, 8);
+  ASSERT_EQ(discs.size(), 8u);
+  EXPECT_NEAR(discs.front().radius, std::hypot(0.625, 1.65), 1e-12);
+  // Every point of the polygon is in some disc (a dense grid over the rectangle).
+  for (double x = -5.0; x <= 5.0; x += 0.05)
+    for (double y = -1.65; y <= 1.65; y += 0.05) {
+      bool covered = false;
+      for (const Disc& d : discs) covered = covered || (Eigen::Vector2d(x, y) - d.centre).norm() <= d.radius + 1e-12;
+      ASSERT_TRUE(covered) << x << ", " << y;
+    }
+  // Along the middle of a 6 m corridor the discs decide nearly every pose without the exact test.
+  const Se2Planner planner(planner_test::Corridor(60, 6), miner, {});
+  std::mt19937 rng(2);
+  std::uniform_real_distribution<double> ux(8, 52), uy(-0.5, 0.5), a(-0.1, 0.1);
+  int free = 0;
+  for (int i = 0; i < 500; ++i) free += planner.PoseFree(Pose2(ux(rng), uy(rng), a(rng)));
+  EXPECT_EQ(free, 500);
+  const Se2PlanResult r = planner.Plan(Pose2(6, 0.5, 0.0), Pose2(54, -0.5, 0.0));
+  ASSERT_EQ(r.status, SearchStatus::kFound) << r.reason;
+  // (The exact tests are near the closed ends, 1 m behind the start and the goal.)
+  EXPECT_GT(r.collisions.free_by_field, 2 * r.collisions.exact_tests)
+      << r.collisions.free_by_field << " by the field, " << r.collisions.exact_tests << " exact";
+}
+
+TEST(FootprintCollisionTest, AnyPolygonAgreesWithBruteForce) {
+  // A pentagon with a pointed nose (not a rectangle): the cover is of its bounding box, the
+  // inside points are the disc centres inside it. Never free when brute force finds contact.
+  std::vector<Segment> map = planner_test::Crossing(6.0, 20.0);
+  map.push_back({-1.0, 9.0, -0.5, 9.5});
+  const Footprint nose{{{4.5, 0.0}, {2.0, 1.4}, {-4.0, 1.4}, {-4.0, -1.4}, {2.0, -1.4}}};
+  for (const double clearance : {0.0, 0.3}) {
+    Se2PlannerOptions o;
+    o.clearance = clearance;
+    o.collision_discs = 5;
+    const Se2Planner planner(map, nose, o);
+    ASSERT_EQ(planner.setup_error(), "");
+    testing::PathCheckSettings st = CheckerFor(planner);
+    st.clearance = o.clearance + 0.5 * o.collision_step;
+    std::vector<Segment> walls = map;
+    planner_test::AddBox(walls, -20, -20, 20, 20);
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> u(-20, 20), a(-kPi, kPi);
+    int free = 0, wrong = 0;
+    for (int i = 0; i < 3000; ++i) {
+      const Pose2 p(u(rng), u(rng), a(rng));
+      const bool brute_free = BruteForceFree(walls, p, st, 20.0);
+      wrong += planner.PoseFree(p) != brute_free;
+      free += brute_free;
+    }
+    EXPECT_EQ(wrong, 0) << "clearance " << clearance;
+    EXPECT_GT(free, 50);
+  }
+}
+
+TEST(GridDijkstraTest, LazyDistancesEqualTheFullDijkstra) {
+  std::mt19937 rng(4);
+  for (int trial = 0; trial < 10; ++trial) {
+    OccupancyGrid grid(40, 30);
+    for (int y = 0; y < 30; ++y)
+      for (int x = 0; x < 40; ++x) grid.SetBlocked(x, y, rng() % 4 == 0);
+    const GridCell source{static_cast<int>(rng() % 40), static_cast<int>(rng() % 30)};
+    grid.SetBlocked(source.x, source.y, false);
+    const std::vector<double> full = GridDistancesFrom(grid, source);
+    LazyGridDistances lazy(grid, source);
+    // Asked in random order, each answer as the full run's.
+    std::vector<size_t> order(full.size());
+    for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::shuffle(order.begin(), order.end(), rng);
+    for (const size_t c : order)
+      ASSERT_EQ(lazy.Distance(static_cast<int>(c % 40), static_cast<int>(c / 40)), full[c]);
+  }
 }
 
 TEST(Se2PlannerTest, RandomRequestsInARoomGiveCheckedPaths) {
@@ -165,6 +246,32 @@ TEST(Se2PlannerTest, RandomRequestsInARoomGiveCheckedPaths) {
     ++found;
   }
   EXPECT_GE(found, 6);
+}
+
+TEST(Se2PlannerTest, ARepeatedRequestGivesTheSamePathFromTheCachedHeuristic) {
+  const std::vector<Segment> map = planner_test::Crossing(6.0, 20.0);
+  const Se2Planner planner(map, Footprint::Rectangle(3.3, 10.0), {});
+  const Pose2 s(0, -12, kPi / 2), g(12, 0, 0.0);
+  const Se2PlanResult first = planner.Plan(s, g);
+  ASSERT_EQ(first.status, SearchStatus::kFound) << first.reason;
+  const Se2PlanResult other = planner.Plan(Pose2(0, -13, kPi / 2), Pose2(-12, 0, kPi));  // another goal between
+  EXPECT_EQ(other.status, SearchStatus::kFound) << other.reason;
+  const Se2PlanResult again = planner.Plan(s, g);
+  ASSERT_EQ(again.status, SearchStatus::kFound) << again.reason;
+  EXPECT_EQ(again.expansions, first.expansions);
+  EXPECT_DOUBLE_EQ(again.cost, first.cost);
+  ASSERT_EQ(again.path.pieces.size(), first.path.pieces.size());
+  for (size_t i = 0; i < again.path.pieces.size(); ++i)
+    EXPECT_EQ(again.path.pieces[i].end.translation(), first.path.pieces[i].end.translation());
+  // Without the shot term the heuristic is admissible: the path is checked and no cheaper
+  // than the first by more than the search's discretisation allows.
+  Se2PlannerOptions admissible;
+  admissible.shot_heuristic = false;
+  const Se2Planner careful(map, Footprint::Rectangle(3.3, 10.0), admissible);
+  const Se2PlanResult r = careful.Plan(s, g);
+  ASSERT_EQ(r.status, SearchStatus::kFound) << r.reason;
+  EXPECT_TRUE(testing::CheckPath(map, s, AsChecked(r.path), CheckerFor(careful)).ok);
+  EXPECT_LE(r.cost, first.cost + 1e-9);
 }
 
 TEST(Se2PlannerTest, DrivesThroughACorridor) {
