@@ -182,6 +182,11 @@ class OptionScope {
                        double max_s) const;
   // `alias` is a whole key (not prefixed): the flat name a process has always accepted.
   void AddAlias(const std::string& alias, const std::string& name) const { schema_->AddAlias(alias, Key(name)); }
+  // Each of `names` also as the root key `flat_prefix + name`: the flat flags a process took
+  // before its options nested (Nested("match").AddFlatAliases({"min_threshold"})).
+  void AddFlatAliases(const std::vector<std::string>& names, const std::string& flat_prefix = "") const {
+    for (const std::string& name : names) AddAlias(flat_prefix + name, name);
+  }
 
  private:
   ConfigSchema* schema_;

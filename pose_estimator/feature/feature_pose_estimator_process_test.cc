@@ -106,5 +106,25 @@ TEST(FeaturePoseEstimatorProcess, BadFlagsAndFilesExitTwoWithOneLine) {
   EXPECT_NE(r.output.find("--angerr"), std::string::npos);
 }
 
+// Issue 12: the estimator's options nested (matching.*, extraction.*, ...); the flat flags
+// scripts and tests have always used set the nested keys.
+TEST(FeaturePoseEstimatorProcess, TheFlatFlagsOfBeforeSetTheNestedKeys) {
+  testing::TempDir dir("minenav_fpe_process_test");
+  const std::vector<std::pair<std::string, std::string>> flags = {
+      {"angerr", "matching.angerr = 0.2"}, {"poserr", "matching.poserr = 2"}, {"concerr", "matching.concerr = 0.3"},
+      {"disterr", "matching.disterr = 0.4"}, {"bindisterr", "matching.bindisterr = 0.6"},
+      {"binangerr", "matching.binangerr = 0.1"}, {"arm-length", "extraction.corner.arm_length = 0.6"},
+      {"noise-sigma", "extraction.noise_sigma = 0.05"}, {"point-sigma", "minimization.point_sigma = 0.05"},
+      {"max-range", "prediction.max_range = 30"}};
+  std::vector<std::string> args = {"--print-config"};
+  for (const auto& [flag, line] : flags) {
+    args.push_back("--" + flag);
+    args.push_back(line.substr(line.find(" = ") + 3));
+  }
+  const RunResult r = Fpe(args, dir);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  for (const auto& [flag, line] : flags) EXPECT_NE(r.output.find("\n" + line + "\n"), std::string::npos) << flag;
+}
+
 }  // namespace
 }  // namespace minenav

@@ -53,7 +53,16 @@ struct IconicEstimatorOptions {
   double max_pair_distance = 60.0;  // m
   bool every_overlapping_scan = true;  // see MultiScanOptions
   int point_stride = 1;
+  // Convergence of the simultaneous adjustment (MultiScanOptions::epsilon_*), m and rad.
+  double simultaneous_epsilon_translation = 1e-3;
+  double simultaneous_epsilon_rotation = 1e-4;
 };
+
+class OptionScope;
+// Declares every field of IconicEstimatorOptions under `scope`: mode and the simultaneous
+// mode's fields at the scope, the nested structs as match.*, correspondence.*,
+// segment_map.*, partial.* and fit.*.
+void DeclareOptions(OptionScope scope, IconicEstimatorOptions& o);
 
 // One scan's estimate as PoseEstimate (source "ipe"); compute_time is left to the caller.
 PoseEstimate ToPoseEstimate(const IconicMatchResult& r, const LadarScan& scan);

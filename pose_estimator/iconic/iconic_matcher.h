@@ -46,6 +46,10 @@ struct IconicMatchOptions {
 // Returns "" if the options are consistent, else a one-line reason.
 std::string ValidateIconicMatchOptions(const IconicMatchOptions& options);
 
+class OptionScope;
+// Declares every field of IconicMatchOptions under `scope` (unit, meaning, range).
+void DeclareOptions(OptionScope scope, IconicMatchOptions& o);
+
 struct IconicMatchResult {
   Pose2 pose;  // vehicle in the map frame: the last iterate; do not trust it unless converged
   // Covariance of (x, y, theta) from the normal equations: sigma^2 (J^T W J)^-1 with sigma^2

@@ -43,6 +43,10 @@ struct MultiScanOptions {
   int point_stride = 1;
 };
 
+class OptionScope;
+// Declares every field of MultiScanOptions under `scope`; match and partial nest.
+void DeclareOptions(OptionScope scope, MultiScanOptions& o);
+
 struct MultiScanInput {
   std::vector<Eigen::Vector2d> points;  // vehicle frame, in scan order
   Pose2 initial;                        // map frame
