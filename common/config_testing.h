@@ -21,6 +21,7 @@
 #include <functional>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "common/config.h"
@@ -100,6 +101,33 @@ std::vector<std::string> ExpectEveryOptionReachable(const T& initial,
 template <typename T>
 std::vector<std::string> ExpectEveryOptionReachable(const T& initial = T{}) {
   return ExpectEveryOptionReachable<T>(initial, [](ConfigSchema& s, T& o) { DeclareOptions(OptionScope(s), o); });
+}
+
+// The flat flags a process kept as aliases of nested keys (issue 12): each pair is a flag
+// without its dashes and the `key = value` line --print-config must then show.
+using FlagAndConfigLine = std::pair<std::string, std::string>;
+
+// The command line that gives every flag the value of its line.
+inline std::vector<std::string> FlagArgs(const std::vector<FlagAndConfigLine>& flags) {
+  std::vector<std::string> args;
+  for (const auto& [flag, line] : flags) {
+    args.push_back("--" + flag);
+    args.push_back(line.substr(line.find(" = ") + 3));
+  }
+  return args;
+}
+
+// The same, then --print-config: what a process test runs.
+inline std::vector<std::string> PrintConfigArgs(const std::vector<FlagAndConfigLine>& flags) {
+  std::vector<std::string> args = FlagArgs(flags);
+  args.push_back("--print-config");
+  return args;
+}
+
+// Every flag's line is in `config_text` (a --print-config output or ConfigText()).
+inline void ExpectConfigLines(const std::string& config_text, const std::vector<FlagAndConfigLine>& flags) {
+  for (const auto& [flag, line] : flags)
+    EXPECT_NE(("\n" + config_text).find("\n" + line + "\n"), std::string::npos) << "--" << flag << ": " << line;
 }
 
 }  // namespace minenav
