@@ -30,18 +30,15 @@ void DeclareOptions(ConfigSchema& s, LadarDriverOptions& o) {
   schedule.AddAlias("max_truth_gap", "max_gap");
   s.AddString("replay", &o.replay, "replay mode: republish the scans of this LCM log at the recorded rate");
   s.AddDouble("replay_speed", &o.replay_speed, "x", "replay speed factor (2 = twice as fast)", 0.01, 1000.0);
-  s.AddChannel("truth_channel", &o.truth_channel, "subscribes", "vehicle_truth_t",
-               "the vehicle's true pose (simulation mode)");
-  s.AddChannel("world_channel", &o.world_channel, "subscribes", "line_map_t",
-               "the world to ray-cast when --world is empty (simulation mode)");
-  s.AddChannel("scan_channel", &o.scan_channel, "publishes", "ladar_scan_t",
-               "scans (replay mode: also the channel read from the log)");
-  s.AddHelpEpilog(
-      "Examples:\n"
-      "  ladar_driver --sensor typhoon --seed 3              (with vehicle_sim running)\n"
-      "  ladar_driver --sensor cyclone --points 8192 --range-sigma 0.05 --world mine.json\n"
-      "  ladar_driver --log truth.lcm --log-out scans.lcm    (batch over SIM_TRUTH + SIM_WORLD)\n"
-      "  ladar_driver --replay dataset.lcm --replay-speed 2\n");
+  s.AddChannel("truth_channel", &o.truth_channel, "subscribes", "vehicle_truth_t", "simulation: the true pose");
+  s.AddChannel("world_channel", &o.world_channel, "subscribes", "line_map_t", "simulation: the world, if no --world");
+  s.AddChannel("scan_channel", &o.scan_channel, "publishes", "ladar_scan_t", "scans (replay: also read from the log)");
+  s.AddHelpEpilog(R"(Examples:
+  ladar_driver --sensor typhoon --seed 3              (with vehicle_sim running)
+  ladar_driver --sensor cyclone --points 8192 --range-sigma 0.05 --world mine.json
+  ladar_driver --log truth.lcm --log-out scans.lcm    (batch over SIM_TRUTH + SIM_WORLD)
+  ladar_driver --replay dataset.lcm --replay-speed 2
+)");
 }
 
 LadarSimulationSetup ResolveLadarDriver(const LadarDriverOptions& o, const NodeOptions& node) {

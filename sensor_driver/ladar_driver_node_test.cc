@@ -6,12 +6,10 @@
 
 #include <gtest/gtest.h>
 
-#include <memory>
-
 #include "common/config_testing.h"
 #include "common/node/conversions.h"
 #include "common/node/event_log.h"
-#include "common/node/fake_bus.h"
+#include "common/node/fake_runtime.h"
 #include "minenav/heartbeat_t.hpp"
 #include "minenav/ladar_scan_t.hpp"
 #include "minenav/odometry_t.hpp"
@@ -45,18 +43,6 @@ class SteppingClock final : public Clock {
   mutable int64_t utime_;
 };
 
-struct Harness {
-  explicit Harness(Clock& clock, double heartbeat_period = 0.0) {
-    auto owned = std::make_unique<FakeBus>();
-    bus = owned.get();
-    NodeOptions node_options;
-    node_options.heartbeat_period = heartbeat_period;
-    runtime = std::make_unique<NodeRuntime>("test_ladar", node_options);
-    runtime->StartWith(std::move(owned), clock);
-  }
-  FakeBus* bus = nullptr;
-  std::unique_ptr<NodeRuntime> runtime;
-};
 
 LadarDriverOptions IdealTyphoon() {
   LadarDriverOptions o;
@@ -66,19 +52,31 @@ LadarDriverOptions IdealTyphoon() {
   return o;
 }
 
+// The simulation node on the fake bus, heartbeats every second; the clock started.
+struct SimulationHarness {
+  SimulationHarness() { fake.runtime().SpinOnce(0); }
+  // The heartbeats so far, after one more second.
+  std::vector<heartbeat_t> HeartbeatsAfterASecond() {
+    clock.Advance(1'000'000);
+    fake.runtime().SpinOnce(0);
+    return fake.bus().Decoded<heartbeat_t>("HEARTBEAT");
+  }
+  ManualClock clock{kT0};
+  FakeRuntime fake{clock, /*heartbeat_period=*/1.0};
+  FakeBus& bus = fake.bus();
+  LadarDriverOptions options = IdealTyphoon();
+  LadarSimulationNode node{fake.runtime(), options, ResolveLadarDriver(options, NodeOptions())};
+};
+
 TEST(LadarSimulationNodeTest, ScansFollowTheTruthClockInTheWorldFromTheWorldChannel) {
-  ManualClock clock(kT0);
-  Harness h(clock, 1.0);
-  const LadarDriverOptions o = IdealTyphoon();
-  LadarSimulationNode node(*h.runtime, o, ResolveLadarDriver(o, NodeOptions()));
-  h.runtime->SpinOnce(0);  // the first heartbeat: waiting for SIM_TRUTH
-  h.bus->InjectMessage("SIM_TRUTH", Truth(kT0));  // due at once, but no world yet
-  h.bus->HandleFor(0);
-  EXPECT_TRUE(h.bus->PublishedOn("LADAR_SCAN").empty());
-  h.bus->InjectMessage("SIM_WORLD", SegmentsToLcm(Room(), kT0, 1, "room"));
-  for (int k = 1; k <= 5; ++k) h.bus->InjectMessage("SIM_TRUTH", Truth(kT0 + k * 50'000));  // 20 Hz truth
-  h.bus->HandleFor(0);
-  const auto scans = h.bus->Decoded<ladar_scan_t>("LADAR_SCAN");
+  SimulationHarness h;
+  h.bus.InjectMessage("SIM_TRUTH", Truth(kT0));  // due at once, but no world yet
+  h.bus.HandleFor(0);
+  EXPECT_TRUE(h.bus.PublishedOn("LADAR_SCAN").empty());
+  h.bus.InjectMessage("SIM_WORLD", SegmentsToLcm(Room(), kT0, 1, "room"));
+  for (int k = 1; k <= 5; ++k) h.bus.InjectMessage("SIM_TRUTH", Truth(kT0 + k * 50'000));  // 20 Hz truth
+  h.bus.HandleFor(0);
+  const auto scans = h.bus.Decoded<ladar_scan_t>("LADAR_SCAN");
   ASSERT_EQ(scans.size(), 2u);  // at t0 + 0.1 s and t0 + 0.2 s (10 Hz)
   for (size_t k = 0; k < scans.size(); ++k) {
     EXPECT_EQ(scans[k].scan_id, static_cast<int64_t>(k));
@@ -86,10 +84,8 @@ TEST(LadarSimulationNodeTest, ScansFollowTheTruthClockInTheWorldFromTheWorldChan
     ASSERT_EQ(scans[k].num_ranges, 2048);
     EXPECT_NEAR(scans[k].ranges[0], 5.0, 1e-5) << "the wall 5 m ahead";
   }
-  EXPECT_EQ(node.scans_published(), 2);
-  clock.Advance(1'000'000);
-  h.runtime->SpinOnce(0);
-  const auto heartbeats = h.bus->Decoded<heartbeat_t>("HEARTBEAT");
+  EXPECT_EQ(h.node.scans_published(), 2);
+  const auto heartbeats = h.HeartbeatsAfterASecond();
   ASSERT_EQ(heartbeats.size(), 2u);
   EXPECT_EQ(heartbeats[0].state, heartbeat_t::WARN);
   EXPECT_EQ(heartbeats[0].message, "waiting for SIM_TRUTH");
@@ -97,20 +93,14 @@ TEST(LadarSimulationNodeTest, ScansFollowTheTruthClockInTheWorldFromTheWorldChan
 }
 
 TEST(LadarSimulationNodeTest, WithoutAWorldTheHeartbeatSaysSo) {
-  ManualClock clock(kT0);
-  Harness h(clock, 1.0);
-  const LadarDriverOptions o = IdealTyphoon();
-  LadarSimulationNode node(*h.runtime, o, ResolveLadarDriver(o, NodeOptions()));
-  h.runtime->SpinOnce(0);
-  h.bus->InjectMessage("SIM_TRUTH", Truth(kT0));
-  h.bus->HandleFor(0);
-  clock.Advance(1'000'000);
-  h.runtime->SpinOnce(0);
-  const auto heartbeats = h.bus->Decoded<heartbeat_t>("HEARTBEAT");
+  SimulationHarness h;
+  h.bus.InjectMessage("SIM_TRUTH", Truth(kT0));
+  h.bus.HandleFor(0);
+  const auto heartbeats = h.HeartbeatsAfterASecond();
   ASSERT_EQ(heartbeats.size(), 2u);
   EXPECT_EQ(heartbeats[1].state, heartbeat_t::WARN);
   EXPECT_EQ(heartbeats[1].message, "no world");
-  EXPECT_EQ(node.scans_published(), 0);
+  EXPECT_EQ(h.node.scans_published(), 0);
 }
 
 TEST(ScanReplayNodeTest, RepublishesTheLogsScansAtTheRecordedPaceAndSkipsBadOnes) {
@@ -119,14 +109,9 @@ TEST(ScanReplayNodeTest, RepublishesTheLogsScansAtTheRecordedPaceAndSkipsBadOnes
   std::vector<std::vector<uint8_t>> recorded;
   {
     LogWriter w(log);
+    const LadarSimulator simulator(LadarModel::Typhoon().Ideal(), 1);
     for (int k = 0; k < 3; ++k) {
-      LadarScan scan;
-      scan.utime = kT0 + k * 100'000;
-      scan.scan_id = k;
-      scan.angle_step = 0.1f;
-      scan.min_range = 0.5f;
-      scan.max_range = 30.0f;
-      scan.ranges.assign(8, 4.0f);
+      const LadarScan scan = simulator.Simulate(Room(), Pose2(), Pose2(), kT0 + k * 100'000, k);
       recorded.push_back(EncodeMessage(ToLcm(scan)));
       w.Write("LADAR_SCAN", ToLcm(scan));
       if (k == 1) {
@@ -138,20 +123,20 @@ TEST(ScanReplayNodeTest, RepublishesTheLogsScansAtTheRecordedPaceAndSkipsBadOnes
     w.Close();
   }
   SteppingClock clock(kT0);
-  Harness h(clock);
+  FakeRuntime fake(clock);
   LadarDriverOptions o;
   o.replay = log;
   o.replay_speed = 2.0;
-  ScanReplayNode node(*h.runtime, o);
+  ScanReplayNode node(fake.runtime(), o);
   const int64_t start = clock.NowUtime();
   EXPECT_EQ(node.Run(), 0);
   const int64_t elapsed = clock.NowUtime() - start;
   EXPECT_GE(elapsed, 100'000) << "0.2 s of log at twice the speed";
   EXPECT_LT(elapsed, 150'000);
-  const auto published = h.bus->PublishedOn("LADAR_SCAN");
+  const auto published = fake.bus().PublishedOn("LADAR_SCAN");
   ASSERT_EQ(published.size(), 3u);
   for (size_t k = 0; k < 3; ++k) EXPECT_EQ(published[k].data, recorded[k]) << "unchanged, scan " << k;
-  EXPECT_TRUE(h.bus->PublishedOn("ODOMETRY").empty());
+  EXPECT_TRUE(fake.bus().PublishedOn("ODOMETRY").empty());
   EXPECT_EQ(node.scans_published(), 3);
   EXPECT_EQ(node.scans_bad(), 1);
 }
@@ -181,26 +166,17 @@ TEST(LadarDriverOptionsTest, EveryOptionIsReachableAndTheFlatFlagsSetTheNestedKe
   LadarDriverOptions o;
   ConfigSchema s("ladar_driver", "test");
   DeclareOptions(s, o);
-  ASSERT_EQ(s.Parse({"--sensor", "cyclone", "--points", "8192", "--range-sigma", "0.05", "--min-range", "1",
-                     "--max-range", "40", "--start-angle", "-180deg", "--angular-resolution", "0.001",
-                     "--range-resolution", "0.01", "--beam-divergence", "0.002", "--mixed-pixel-probability", "0.1",
-                     "--mixed-pixel-min-gap", "0.2", "--scan-rate", "2", "--sensor-id", "x", "--truth-buffer", "2",
-                     "--max-truth-gap", "0.5"}),
-            ParseOutcome::kRun);
-  EXPECT_EQ(o.model.sensor, "cyclone");
-  EXPECT_EQ(o.model.points, 8192);
-  EXPECT_EQ(o.model.range_sigma, "0.05");
-  EXPECT_EQ(o.model.min_range, "1");
-  EXPECT_EQ(o.model.max_range, "40");
-  EXPECT_EQ(o.model.start_angle, "-180deg");
-  EXPECT_EQ(o.model.angular_resolution, "0.001");
-  EXPECT_EQ(o.model.range_resolution, "0.01");
-  EXPECT_EQ(o.model.beam_divergence, "0.002");
-  EXPECT_EQ(o.model.mixed_pixel_probability, "0.1");
-  EXPECT_EQ(o.model.mixed_pixel_min_gap, "0.2");
-  EXPECT_EQ(o.model.scan_rate, "2");
-  EXPECT_EQ(o.model.sensor_id, "x");
-  EXPECT_EQ(o.schedule.history_us, 2'000'000);
+  const std::vector<FlagAndConfigLine> flags = {
+      {"sensor", "model.sensor = cyclone"}, {"points", "model.points = 8192"}, {"sensor-id", "model.sensor_id = x"},
+      {"min-range", "model.min_range = 1"}, {"max-range", "model.max_range = 40"},
+      {"start-angle", "model.start_angle = -180deg"}, {"angular-resolution", "model.angular_resolution = 0.001"},
+      {"range-resolution", "model.range_resolution = 0.01"}, {"range-sigma", "model.range_sigma = 0.05"},
+      {"beam-divergence", "model.beam_divergence = 0.002"},
+      {"mixed-pixel-probability", "model.mixed_pixel_probability = 0.1"},
+      {"mixed-pixel-min-gap", "model.mixed_pixel_min_gap = 0.2"}, {"scan-rate", "model.scan_rate = 2"},
+      {"truth-buffer", "schedule.history = 2"}, {"max-truth-gap", "schedule.max_gap = 0.5"}};
+  ASSERT_EQ(s.Parse(FlagArgs(flags)), ParseOutcome::kRun);
+  ExpectConfigLines(s.ConfigText(), flags);
   EXPECT_EQ(o.schedule.max_gap_us, 500'000);
 }
 

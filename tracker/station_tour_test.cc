@@ -22,13 +22,7 @@ Pose2 Move(const Pose2& p, const DriveCommand& c) {
   return {p.x + v * dt * std::cos(th), p.y + v * dt * std::sin(th), NormalizeAngle(p.theta + w * dt)};
 }
 
-WaypointFollowerOptions Fast() {
-  WaypointFollowerOptions o;
-  o.cruise_speed = 0.5;
-  o.turn_rate = 0.5;
-  o.command_timeout = 0.3;
-  return o;
-}
+WaypointFollowerOptions Fast() { return {.cruise_speed = 0.5, .turn_rate = 0.5, .command_timeout = 0.3}; }
 
 TEST(StationTourTest, StandsStillUntilThereIsAPose) {
   StationTour tour(Fast(), {Pose2(2, 0, 0)}, 1.0);

@@ -6,11 +6,9 @@
 
 #include <gtest/gtest.h>
 
-#include <memory>
-
 #include "common/config_testing.h"
 #include "common/node/conversions.h"
-#include "common/node/fake_bus.h"
+#include "common/node/fake_runtime.h"
 #include "minenav/drive_command_t.hpp"
 #include "minenav/odometry_t.hpp"
 #include "minenav/vehicle_truth_t.hpp"
@@ -21,24 +19,18 @@ namespace {
 constexpr int64_t kT0 = 1'700'000'000'000'000;
 
 struct Harness {
-  explicit Harness(WaypointDriverOptions o, const std::vector<Station>& stations) {
-    auto owned = std::make_unique<FakeBus>();
-    bus = owned.get();
-    NodeOptions node_options;
-    node_options.heartbeat_period = 0.0;
-    runtime = std::make_unique<NodeRuntime>("test_driver", node_options);
-    runtime->StartWith(std::move(owned), clock);
-    node = std::make_unique<WaypointDriverNode>(*runtime, o, stations);
-  }
+  Harness(const WaypointDriverOptions& o, const std::vector<Station>& stations)
+      : node(fake.runtime(), o, stations) {}
   // Advances the clock by one control period and runs the loop once.
   void Tick(int64_t dt_us = 100'000) {
     clock.Advance(dt_us);
     runtime->SpinOnce(0);
   }
   ManualClock clock{kT0};
-  FakeBus* bus = nullptr;
-  std::unique_ptr<NodeRuntime> runtime;
-  std::unique_ptr<WaypointDriverNode> node;
+  FakeRuntime fake{clock};
+  FakeBus* bus = &fake.bus();
+  NodeRuntime* runtime = &fake.runtime();
+  WaypointDriverNode node;
 };
 
 vehicle_truth_t TruthAt(const Pose2& pose) {
@@ -117,14 +109,13 @@ TEST(WaypointDriverNodeTest, EveryOptionIsReachableAndTheFlatFlagsSetTheFollower
   WaypointDriverOptions o;
   ConfigSchema s("waypoint_driver", "test");
   DeclareOptions(s, o);
-  ASSERT_EQ(s.Parse({"--cruise-speed", "0.3", "--turn-rate", "0.2", "--position-tolerance", "0.2",
-                     "--heading-tolerance", "0.1", "--align-tolerance", "0.3"}),
-            ParseOutcome::kRun);
-  EXPECT_DOUBLE_EQ(o.follower.cruise_speed, 0.3);
-  EXPECT_DOUBLE_EQ(o.follower.turn_rate, 0.2);
-  EXPECT_DOUBLE_EQ(o.follower.position_tolerance, 0.2);
-  EXPECT_DOUBLE_EQ(o.follower.heading_tolerance, 0.1);
-  EXPECT_DOUBLE_EQ(o.follower.align_tolerance, 0.3);
+  const std::vector<FlagAndConfigLine> flags = {
+      {"cruise-speed", "follower.cruise_speed = 0.3"}, {"turn-rate", "follower.turn_rate = 0.2"},
+      {"position-tolerance", "follower.position_tolerance = 0.2"},
+      {"heading-tolerance", "follower.heading_tolerance = 0.1"},
+      {"align-tolerance", "follower.align_tolerance = 0.3"}};
+  ASSERT_EQ(s.Parse(FlagArgs(flags)), ParseOutcome::kRun);
+  ExpectConfigLines(s.ConfigText(), flags);
   EXPECT_DOUBLE_EQ(WaypointDriverDefaults({}).follower.command_timeout, 0.3);  // 3 periods of 10 Hz
   EXPECT_DOUBLE_EQ(WaypointDriverDefaults({"--rate=5"}).follower.command_timeout, 0.6);
 }

@@ -33,8 +33,9 @@ TEST(FeatureOptionsTest, NestedStructsNestTheirKeys) {
   FeaturePoseEstimatorOptions o;
   ConfigSchema schema("test", "nested keys");
   DeclareOptions(OptionScope(schema), o);
-  schema.LoadText("extraction.corner.arm_length = 0.6\nmatching.angerr = 45deg\nfeature_map.vertex_merge_distance = 0.02\n",
-                  "test");
+  schema.LoadText(
+      "extraction.corner.arm_length = 0.6\nmatching.angerr = 45deg\nfeature_map.vertex_merge_distance = 0.02\n",
+      "test");
   EXPECT_DOUBLE_EQ(o.extraction.corner.arm_length, 0.6);
   EXPECT_NEAR(o.matching.angerr, DegToRad(45.0), 1e-12);
   EXPECT_DOUBLE_EQ(o.map.vertex_merge_distance, 0.02);

@@ -51,10 +51,10 @@ void DeclareOptions(ConfigSchema& s, ProcessOptions& p) {
   estimator.Nested("minimization").AddFlatAliases({"point_sigma"});
   estimator.Nested("prediction").AddFlatAliases({"max_range"});
   s.AddChannel("map_channel", &p.map_channel, "subscribes", "line_map_t", "the line map when --map is empty");
-  s.AddHelpEpilog(
-      "Examples:\n"
-      "  feature_pose_estimator --log run.lcm --map mockup.json --poses-out est.csv\n"
-      "  feature_pose_estimator --map mockup.json --angerr 45deg       (live)\n");
+  s.AddHelpEpilog(R"(Examples:
+  feature_pose_estimator --log run.lcm --map mockup.json --poses-out est.csv
+  feature_pose_estimator --map mockup.json --angerr 45deg       (live)
+)");
 }
 
 int Run(NodeRuntime& runtime, const ProcessOptions& p) {

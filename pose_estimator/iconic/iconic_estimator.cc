@@ -223,20 +223,9 @@ void DeclareOptions(OptionScope scope, IconicEstimatorOptions& o) {
   scope.AddBool("seed_simultaneous", &o.seed_simultaneous,
                 "simultaneous: start from the all-previous estimates, which tolerate dead-reckoning error, rather "
                 "than from the given poses");
-  scope.AddDouble("max_pair_distance", &o.max_pair_distance, "m",
-                  "simultaneous: scans farther apart are never paired (60 m: beyond twice the useful range two "
-                  "scans cannot overlap)",
-                  0.0, 1e6);
-  scope.AddBool("every_overlapping_scan", &o.every_overlapping_scan,
-                "simultaneous: a residual per overlapping scan (A.3) rather than for the nearest only, which "
-                "biases each link by ~1 cm");
-  scope.AddInt("point_stride", &o.point_stride, "simultaneous: use every k-th point as a query (1 = all)", 1, 1000);
-  scope.AddDouble("simultaneous_epsilon_translation", &o.simultaneous_epsilon_translation, "m",
-                  "simultaneous: converged when no pose moves more (1 mm: points hop between overlapping "
-                  "polylines, so the step jitters at ~0.3 mm)",
-                  1e-9, 1.0);
-  scope.AddDouble("simultaneous_epsilon_rotation", &o.simultaneous_epsilon_rotation, "rad",
-                  "simultaneous: converged when no heading moves more (1e-4 rad)", 1e-12, 1.0);
+  DeclareMultiScanParameters(scope.Nested("simultaneous"),
+                             {&o.simultaneous_epsilon_translation, &o.simultaneous_epsilon_rotation,
+                              &o.max_pair_distance, &o.every_overlapping_scan, &o.point_stride});
 }
 
 }  // namespace minenav

@@ -59,9 +59,10 @@ struct IconicEstimatorOptions {
 };
 
 class OptionScope;
-// Declares every field of IconicEstimatorOptions under `scope`: mode and the simultaneous
-// mode's fields at the scope, the nested structs as match.*, correspondence.*,
-// segment_map.*, partial.* and fit.*.
+// Declares every field of IconicEstimatorOptions under `scope`: mode, scan_map_cell_size,
+// chain_odometry and seed_simultaneous at the scope, the nested structs as match.*,
+// correspondence.*, segment_map.*, partial.* and fit.*, and the fields the simultaneous mode
+// hands on to MultiScanOptions as simultaneous.* (max_pair_distance, epsilons, ...).
 void DeclareOptions(OptionScope scope, IconicEstimatorOptions& o);
 
 // One scan's estimate as PoseEstimate (source "ipe"); compute_time is left to the caller.

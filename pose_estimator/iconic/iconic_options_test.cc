@@ -29,10 +29,10 @@ TEST(IconicOptionsTest, EveryFieldOfEveryStructIsDeclaredAndReachable) {
   // MultiScanOptions: match (11) and partial (2) nested, and its own 6.
   EXPECT_EQ(ExpectEveryOptionReachable<MultiScanOptions>().size(), 11u + 2u + 6u);
   // IconicEstimatorOptions: match, correspondence, segment_map, partial and fit nested
-  // (11 + 3 + 2 + 2 + 1), and its own 9: mode, scan_map_cell_size, chain_odometry,
-  // seed_simultaneous, max_pair_distance, every_overlapping_scan, point_stride and the two
-  // simultaneous epsilons.
-  EXPECT_EQ(ExpectEveryOptionReachable<IconicEstimatorOptions>().size(), 11u + 3u + 2u + 2u + 1u + 9u);
+  // (11 + 3 + 2 + 2 + 1), mode, scan_map_cell_size, chain_odometry, seed_simultaneous, and
+  // the 5 it hands on to the simultaneous adjustment (max_pair_distance,
+  // every_overlapping_scan, point_stride and the two epsilons) as simultaneous.*.
+  EXPECT_EQ(ExpectEveryOptionReachable<IconicEstimatorOptions>().size(), 11u + 3u + 2u + 2u + 1u + 4u + 5u);
 }
 
 TEST(IconicOptionsTest, NestedStructsNestTheirKeys) {
@@ -41,7 +41,8 @@ TEST(IconicOptionsTest, NestedStructsNestTheirKeys) {
   DeclareOptions(OptionScope(schema), o);
   schema.LoadText(
       "mode = all-previous\nmatch.min_threshold = 0.15\nmatch.loss = huber\ncorrespondence.method = grid\n"
-      "segment_map.min_segment_length = 0.01\npartial.break_distance = 0.7\nfit.segment_length = 0.4\n",
+      "segment_map.min_segment_length = 0.01\npartial.break_distance = 0.7\nfit.segment_length = 0.4\n"
+      "simultaneous.point_stride = 3\n",
       "test");
   EXPECT_EQ(o.mode, IconicMode::kAllPrevious);
   EXPECT_DOUBLE_EQ(o.match.min_threshold, 0.15);
@@ -50,6 +51,7 @@ TEST(IconicOptionsTest, NestedStructsNestTheirKeys) {
   EXPECT_DOUBLE_EQ(o.map.min_segment_length, 0.01);
   EXPECT_DOUBLE_EQ(o.partial.break_distance, 0.7);
   EXPECT_DOUBLE_EQ(o.fit.segment_length, 0.4);
+  EXPECT_EQ(o.point_stride, 3);
   EXPECT_THROW(schema.LoadText("match.max_iterations = 0", "test"), UsageError);
 }
 

@@ -59,13 +59,14 @@ void DeclareOptions(ConfigSchema& s, ProcessOptions& p) {
   estimator.Nested("correspondence").AddFlatAliases({"method", "cell_size"});
   estimator.Nested("partial").AddFlatAliases({"break_distance"});
   estimator.Nested("fit").AddFlatAliases({"segment_length"}, "fit_");
+  estimator.Nested("simultaneous").AddFlatAliases({"max_pair_distance", "point_stride", "every_overlapping_scan"});
   s.AddChannel("map_channel", &p.map_channel, "subscribes", "line_map_t", "surveyed map when --map is empty");
   s.AddChannel("contour_channel", &p.contour_channel, "subscribes", "contour_map_t", "contour map as a line map when --map is empty");
-  s.AddHelpEpilog(
-      "Examples:\n"
-      "  iconic_pose_estimator --log survey.lcm --map mine.json --mode surveyed --poses-out est.csv\n"
-      "  iconic_pose_estimator --log survey.lcm --mode simultaneous --poses-out est.csv\n"
-      "  iconic_pose_estimator --map mine.json                               (live)\n");
+  s.AddHelpEpilog(R"(Examples:
+  iconic_pose_estimator --log survey.lcm --map mine.json --mode surveyed --poses-out est.csv
+  iconic_pose_estimator --log survey.lcm --mode simultaneous --poses-out est.csv
+  iconic_pose_estimator --map mine.json                               (live)
+)");
 }
 
 // Contours as segments; a compressed map is inflated and validated first
