@@ -104,8 +104,8 @@ void DeclareOptions(OptionScope scope, WaypointFollowerOptions& o) {
   scope.AddDouble("steering_gain", &o.steering_gain, "1/s",
                   "yaw rate per rad of heading error while driving, to cancel drift gently (1)", 0.0, 100.0);
   scope.AddDouble("command_timeout", &o.command_timeout, "s",
-                  "validity of each command sent: the vehicle stops when no fresh one arrives (0.5 s: a few "
-                  "control periods)",
+                  "validity of each command sent: the vehicle stops when no fresh one arrives, so a few "
+                  "control periods",
                   0.001, 60.0);
 }
 
