@@ -65,8 +65,8 @@ class ConfigSchema {
   // ("subscribes" / "publishes") and the message type.
   void AddChannel(const std::string& key, std::string* value, const std::string& direction,
                   const std::string& type, const std::string& help);
-  // A number kept in something other than a double (a duration in integer microseconds, an
-  // enum): `get` and `set` convert. Parsed, range-checked and printed like AddDouble.
+  // A number kept in something other than a double (a duration in integer microseconds):
+  // `get` and `set` convert. Parsed, range-checked and printed like AddDouble.
   void AddNumber(const std::string& key, const std::string& unit, const std::string& help, double min, double max,
                  std::function<double()> get, std::function<void(double)> set);
   // One of `choices` (an enum): `get` names the current value, `set(i)` takes choices[i].
@@ -111,7 +111,6 @@ class ConfigSchema {
     std::vector<std::string> choices;  // empty = any value of the kind
   };
   std::vector<OptionInfo> Options() const;
-  const std::map<std::string, std::string>& aliases() const { return aliases_; }  // alias -> key
 
  private:
   struct Entry {
