@@ -112,21 +112,55 @@ void ConfigSchema::AddAlias(const std::string& alias, const std::string& key) {
 
 void ConfigSchema::AddDouble(const std::string& key, double* value, const std::string& unit,
                              const std::string& help, double min, double max) {
+  AddNumber(key, unit, help, min, max, [value] { return *value; }, [value](double v) { *value = v; });
+}
+
+void ConfigSchema::AddNumber(const std::string& key, const std::string& unit, const std::string& help, double min,
+                             double max, std::function<double()> get, std::function<void(double)> set) {
   Entry e;
   e.key = key;
   e.unit = unit;
   e.help = help;
   e.kind = "number";
   const bool angle = unit == "rad";
-  e.set = [value, min, max, angle, key](const std::string& text, const std::string& where) {
+  e.set = [set, min, max, angle, key](const std::string& text, const std::string& where) {
     const double v = ParseNumber(text, where + ": " + key, angle);
     if (v < min || v > max)
       throw UsageError(where + ": " + key + " = " + text + " is outside [" + FormatDouble(min) + ", " +
                        FormatDouble(max) + "]");
-    *value = v;
+    set(v);
   };
-  e.get = [value] { return FormatDouble(*value); };
+  e.get = [get] { return FormatDouble(get()); };
   Add(std::move(e));
+}
+
+void ConfigSchema::AddChoice(const std::string& key, const std::string& help, std::vector<std::string> choices,
+                             std::function<std::string()> get, std::function<void(size_t)> set) {
+  Entry e;
+  e.key = key;
+  e.help = help;
+  e.kind = "string";
+  for (size_t i = 0; i < choices.size(); ++i) e.unit += (i ? "|" : "") + choices[i];
+  e.choices = choices;
+  e.set = [set, choices, key](const std::string& raw, const std::string& where) {
+    const std::string text = Trim(raw);
+    const auto it = std::find(choices.begin(), choices.end(), text);
+    if (it == choices.end()) {
+      std::string list;
+      for (size_t i = 0; i < choices.size(); ++i) list += (i ? ", " : "") + choices[i];
+      throw UsageError(where + ": " + key + " = '" + text + "' is not one of " + list);
+    }
+    set(static_cast<size_t>(it - choices.begin()));
+  };
+  e.get = std::move(get);
+  Add(std::move(e));
+}
+
+void OptionScope::AddMicroseconds(const std::string& name, int64_t* value_us, const std::string& help, double min_s,
+                                  double max_s) const {
+  schema_->AddNumber(
+      Key(name), "s", help, min_s, max_s, [value_us] { return static_cast<double>(*value_us) * 1e-6; },
+      [value_us](double seconds) { *value_us = std::llround(seconds * 1e6); });
 }
 
 void ConfigSchema::AddInt(const std::string& key, int* value, const std::string& help, int min, int max) {
@@ -171,23 +205,17 @@ void ConfigSchema::AddBool(const std::string& key, bool* value, const std::strin
 
 void ConfigSchema::AddString(const std::string& key, std::string* value, const std::string& help,
                              std::vector<std::string> choices) {
+  if (!choices.empty()) {
+    AddChoice(
+        key, help, choices, [value] { return *value; },
+        [value, choices](size_t i) { *value = choices[i]; });
+    return;
+  }
   Entry e;
   e.key = key;
   e.help = help;
   e.kind = "string";
-  if (!choices.empty()) {
-    e.unit = "";
-    for (size_t i = 0; i < choices.size(); ++i) e.unit += (i ? "|" : "") + choices[i];
-  }
-  e.set = [value, choices, key](const std::string& raw, const std::string& where) {
-    const std::string text = Trim(raw);
-    if (!choices.empty() && std::find(choices.begin(), choices.end(), text) == choices.end()) {
-      std::string list;
-      for (size_t i = 0; i < choices.size(); ++i) list += (i ? ", " : "") + choices[i];
-      throw UsageError(where + ": " + key + " = '" + text + "' is not one of " + list);
-    }
-    *value = text;
-  };
+  e.set = [value](const std::string& raw, const std::string&) { *value = Trim(raw); };
   e.get = [value] { return *value; };
   Add(std::move(e));
 }
@@ -388,6 +416,12 @@ std::string ConfigSchema::ConfigText() const {
     os << "\n" << e.key << " = " << e.get() << "\n";
   }
   return os.str();
+}
+
+std::vector<ConfigSchema::OptionInfo> ConfigSchema::Options() const {
+  std::vector<OptionInfo> out;
+  for (const Entry& e : entries_) out.push_back({e.key, e.kind, e.unit, e.choices});
+  return out;
 }
 
 std::string ConfigSchema::OptionsTable() const {

@@ -65,6 +65,13 @@ class ConfigSchema {
   // ("subscribes" / "publishes") and the message type.
   void AddChannel(const std::string& key, std::string* value, const std::string& direction,
                   const std::string& type, const std::string& help);
+  // A number kept in something other than a double (a duration in integer microseconds):
+  // `get` and `set` convert. Parsed, range-checked and printed like AddDouble.
+  void AddNumber(const std::string& key, const std::string& unit, const std::string& help, double min, double max,
+                 std::function<double()> get, std::function<void(double)> set);
+  // One of `choices` (an enum): `get` names the current value, `set(i)` takes choices[i].
+  void AddChoice(const std::string& key, const std::string& help, std::vector<std::string> choices,
+                 std::function<std::string()> get, std::function<void(size_t)> set);
 
   // Free-form text appended to --help (examples, exit codes).
   void AddHelpEpilog(const std::string& text) { epilog_ += text; }
@@ -96,9 +103,19 @@ class ConfigSchema {
   const std::vector<std::string>& positional() const { return positional_; }
   const std::string& program() const { return program_; }
 
+  // What was declared, in declaration order (tests that every option is reachable; tools).
+  struct OptionInfo {
+    std::string key;
+    std::string kind;  // number, integer, bool, string, channel
+    std::string unit;
+    std::vector<std::string> choices;  // empty = any value of the kind
+  };
+  std::vector<OptionInfo> Options() const;
+
  private:
   struct Entry {
     std::string key, unit, help, kind, default_text;
+    std::vector<std::string> choices;
     std::string channel_direction, channel_type;  // for channels only
     std::function<void(const std::string& text, const std::string& where)> set;
     std::function<std::string()> get;
@@ -150,8 +167,25 @@ class OptionScope {
                  std::vector<std::string> choices = {}) const {
     schema_->AddString(Key(name), value, help, std::move(choices));
   }
+  // An enum, named by ToString(value) (found beside the enum): `values` are the choices.
+  template <typename Enum>
+  void AddEnum(const std::string& name, Enum* value, const std::string& help, const std::vector<Enum>& values) const {
+    std::vector<std::string> names;
+    for (const Enum v : values) names.emplace_back(ToString(v));
+    schema_->AddChoice(
+        Key(name), help, std::move(names), [value] { return std::string(ToString(*value)); },
+        [value, values](size_t i) { *value = values[i]; });
+  }
+  // A duration given in seconds and kept in integer microseconds (what clocks count).
+  void AddMicroseconds(const std::string& name, int64_t* value_us, const std::string& help, double min_s,
+                       double max_s) const;
   // `alias` is a whole key (not prefixed): the flat name a process has always accepted.
   void AddAlias(const std::string& alias, const std::string& name) const { schema_->AddAlias(alias, Key(name)); }
+  // Each of `names` also as the root key `flat_prefix + name`: the flat flags a process took
+  // before its options nested (Nested("match").AddFlatAliases({"min_threshold"})).
+  void AddFlatAliases(const std::vector<std::string>& names, const std::string& flat_prefix = "") const {
+    for (const std::string& name : names) AddAlias(flat_prefix + name, name);
+  }
 
  private:
   ConfigSchema* schema_;

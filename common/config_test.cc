@@ -7,6 +7,7 @@
 #include <fstream>
 
 #include "common/angle.h"
+#include "common/config_testing.h"
 #include "tests/temp_dir.h"
 
 namespace minenav {
@@ -190,6 +191,46 @@ TEST(OptionScopeTest, LoadTextNamesItsSourceInErrors) {
   EXPECT_DOUBLE_EQ(o.speed, 0.5);  // the lines before the bad one are in force
 }
 
+
+
+// An enum and a duration as a library declares them (issue 12: options as data).
+enum class ShapeForTest { kLine, kArc };
+const char* ToString(ShapeForTest s) { return s == ShapeForTest::kLine ? "line" : "arc"; }
+struct PathOptionsForTest {
+  ShapeForTest shape = ShapeForTest::kLine;
+  int64_t history_us = 5'000'000;
+};
+void DeclareOptions(OptionScope scope, PathOptionsForTest& o) {
+  scope.AddEnum("shape", &o.shape, "path shape", {ShapeForTest::kLine, ShapeForTest::kArc});
+  scope.AddMicroseconds("history", &o.history_us, "truth kept", 0.1, 600.0);
+}
+
+TEST(OptionScopeTest, EnumsAreNamedByToStringAndDurationsAreSecondsKeptInMicroseconds) {
+  PathOptionsForTest o;
+  ConfigSchema s("prog", "test program");
+  DeclareOptions(OptionScope(s).Nested("path"), o);
+  EXPECT_EQ(ValueInConfigText(s.ConfigText(), "path.shape"), "line");
+  EXPECT_EQ(ValueInConfigText(s.ConfigText(), "path.history"), "5");
+  ASSERT_EQ(s.Parse({"--path.shape", "arc", "--path.history", "0.25"}), ParseOutcome::kRun);
+  EXPECT_EQ(o.shape, ShapeForTest::kArc);
+  EXPECT_EQ(o.history_us, 250'000);
+  EXPECT_THROW(s.Parse({"--path.shape", "circle"}), UsageError);
+  EXPECT_THROW(s.Parse({"--path.history", "0.01"}), UsageError);  // below 0.1 s
+  EXPECT_NE(s.OptionsTable().find("| `path.shape` | line\\|arc | `line` | path shape |"), std::string::npos)
+      << s.OptionsTable();
+  EXPECT_NE(s.OptionsTable().find("| `path.history` | s | `5` | truth kept |"), std::string::npos);
+  const std::vector<ConfigSchema::OptionInfo> options = s.Options();
+  ASSERT_EQ(options.size(), 2u);
+  EXPECT_EQ(options[0].choices, (std::vector<std::string>{"line", "arc"}));
+  EXPECT_EQ(options[1].kind, "number");
+}
+
+TEST(OptionScopeTest, TheReachabilityCheckSetsEveryKeyAndFindsItInTheStruct) {
+  const std::vector<std::string> keys = ExpectEveryOptionReachable<PathOptionsForTest>();
+  EXPECT_EQ(keys, (std::vector<std::string>{"shape", "history"}));
+  const auto match_keys = ExpectEveryOptionReachable<MatchOptionsForTest>();
+  EXPECT_EQ(match_keys.size(), 2u);  // MatchOptionsForTest: 2 fields
+}
 
 
 }  // namespace

@@ -2,6 +2,7 @@
 
 #include <limits>
 
+#include "common/config.h"
 #include "common/pose_at_time.h"
 
 namespace minenav {
@@ -47,6 +48,17 @@ std::vector<DueScan> ScanSchedule::AddTruth(const TruthReading& t, ScheduleNote*
     if (pose) due.push_back({scan_utime, *pose});
   }
   return due;
+}
+
+void DeclareOptions(OptionScope scope, ScanScheduleOptions& o) {
+  scope.AddMicroseconds("history", &o.history_us,
+                        "how much truth history is kept for interpolating the pose at a scan's time (5 s: many "
+                        "truth periods, in case samples arrive late)",
+                        0.1, 600.0);
+  scope.AddMicroseconds("max_gap", &o.max_gap_us,
+                        "a gap between truth samples longer than this skips the scans in it instead of "
+                        "interpolating across it (1 s: the vehicle may have done anything)",
+                        0.01, 60.0);
 }
 
 }  // namespace minenav

@@ -25,6 +25,11 @@ struct ScanScheduleOptions {
   int64_t max_gap_us = 1'000'000;  // a longer gap between truth samples skips the scans in it
 };
 
+class OptionScope;
+// Declares history_us and max_gap_us under `scope`, in seconds. period_us is not an option:
+// it is 1 / the ladar model's scan rate.
+void DeclareOptions(OptionScope scope, ScanScheduleOptions& o);
+
 struct DueScan {
   int64_t utime = 0;  // the scan's stamp
   Pose2 pose;         // the true pose at that time

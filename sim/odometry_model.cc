@@ -3,6 +3,8 @@
 #include <cmath>
 #include <sstream>
 
+#include "common/config.h"
+
 namespace minenav {
 
 std::string ValidateOdometryErrorOptions(const OdometryErrorOptions& o) {
@@ -97,6 +99,21 @@ std::vector<Pose2> PerturbPoses(const std::vector<Pose2>& truth, const PoseNoise
     out.emplace_back(t.x + dx, t.y + dy, NormalizeAngle(t.theta + dth));
   }
   return out;
+}
+
+void DeclareOptions(OptionScope scope, OdometryErrorOptions& o) {
+  scope.AddDouble("scale_error", &o.scale_error, "fraction",
+                  "odometry distance error: 0.02 = reads 2% long (track slip on coal)", -0.5, 0.5);
+  scope.AddDouble("rotation_scale_error", &o.rotation_scale_error, "fraction", "error of each heading change",
+                  -0.5, 0.5);
+  scope.AddDouble("heading_drift_per_metre", &o.heading_drift_per_metre, "rad/m",
+                  "heading drift per metre travelled (signed: + drifts counter-clockwise)", -1.0, 1.0);
+  scope.AddDouble("heading_drift_per_second", &o.heading_drift_per_second, "rad/s",
+                  "heading drift per second, also standing still (a gyro's bias)", -1.0, 1.0);
+  scope.AddDouble("translation_noise", &o.translation_noise, "m/sqrt(m)",
+                  "std of the distance error after 1 m: a random walk, so the step size does not matter", 0.0, 1.0);
+  scope.AddDouble("rotation_noise", &o.rotation_noise, "rad/sqrt(rad)",
+                  "std of the heading error after 1 rad (or 1 m) of motion", 0.0, 1.0);
 }
 
 }  // namespace minenav

@@ -38,6 +38,10 @@ struct OdometryErrorOptions {
 
 std::string ValidateOdometryErrorOptions(const OdometryErrorOptions& options);
 
+class OptionScope;
+// Declares every field of OdometryErrorOptions under `scope` (unit, meaning, range).
+void DeclareOptions(OptionScope scope, OdometryErrorOptions& o);
+
 class DeadReckoning {
  public:
   DeadReckoning(const OdometryErrorOptions& options, const Pose2& initial_pose, uint64_t seed);

@@ -5,6 +5,8 @@
 #include <sstream>
 #include <vector>
 
+#include "common/config.h"
+
 namespace minenav {
 
 namespace {
@@ -211,6 +213,32 @@ MotionIncrement SkidSteerVehicle::Advance(double dt, const ClampedCommand& targe
   }
   pose_ = pose_ * inc.delta;
   return inc;
+}
+
+void DeclareOptions(OptionScope scope, SkidSteerOptions& o) {
+  scope.AddDouble("max_forward_speed", &o.max_forward_speed, "m/s",
+                  "forward speed limit (0.076 m/s: the miner's cruise, about three inches per second, 6.4.2)", 0.0,
+                  10.0);
+  scope.AddDouble("max_reverse_speed", &o.max_reverse_speed, "m/s", "reverse speed limit, magnitude (0.076 m/s)",
+                  0.0, 10.0);
+  scope.AddDouble("turn_radius", &o.turn_radius, "m",
+                  "the one turning radius besides turning in place: the miner has only one (4 m)", 0.01, 1000.0);
+  scope.AddDouble("max_turn_in_place_rate", &o.max_turn_in_place_rate, "rad/s",
+                  "yaw rate limit turning in place (0.05 rad/s)", 0.0, 10.0);
+  scope.AddDouble("max_acceleration", &o.max_acceleration, "m/s^2",
+                  "raising |speed|; 0 = instantaneous (0.05 m/s^2: cruise in 1.5 s)", 0.0, 100.0);
+  scope.AddDouble("max_deceleration", &o.max_deceleration, "m/s^2",
+                  "lowering |speed|; 0 = instantaneous (0.1 m/s^2: stops within 3 cm from cruise)", 0.0, 100.0);
+  scope.AddDouble("max_yaw_acceleration", &o.max_yaw_acceleration, "rad/s^2",
+                  "turning in place; 0 = instantaneous (0.05 rad/s^2)", 0.0, 100.0);
+  scope.AddDouble("min_speed", &o.min_speed, "m/s",
+                  "below this a (v, omega) command turns in place or stops (1 mm/s: a curvature from a smaller "
+                  "speed is noise)",
+                  0.0, 1.0);
+  scope.AddDouble("command_timeout", &o.command_timeout, "s",
+                  "the vehicle's own stale limit: a command older than this or its own timeout, whichever is "
+                  "shorter, is stale and the vehicle stops, so no sender can keep it driving by one command (0.5 s)",
+                  0.001, 3600.0);
 }
 
 }  // namespace minenav

@@ -45,6 +45,10 @@ struct SkidSteerOptions {
 
 std::string ValidateSkidSteerOptions(const SkidSteerOptions& options);
 
+class OptionScope;
+// Declares every field of SkidSteerOptions under `scope` (unit, meaning, range).
+void DeclareOptions(OptionScope scope, SkidSteerOptions& o);
+
 // What the vehicle will actually do.
 enum class SkidSteerMotion { kStopped = 0, kStraight = 1, kArc = 2, kTurnInPlace = 3 };
 

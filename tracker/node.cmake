@@ -1,2 +1,8 @@
+# The waypoint_driver process: a thin main over its node (LCM) over minenav_tracker.
+minenav_node_library(minenav_waypoint_driver_node waypoint_driver_node.cc)
+target_link_libraries(minenav_waypoint_driver_node PUBLIC minenav_tracker minenav_node)
+
 minenav_executable(waypoint_driver waypoint_driver_main.cc)
-target_link_libraries(waypoint_driver PRIVATE minenav_tracker minenav_node)
+target_link_libraries(waypoint_driver PRIVATE minenav_waypoint_driver_node)
+
+minenav_test(NAME waypoint_driver_node_test SOURCES waypoint_driver_node_test.cc LIBS minenav_waypoint_driver_node)

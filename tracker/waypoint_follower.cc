@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "common/config.h"
+
 namespace minenav {
 
 WaypointFollower::WaypointFollower(WaypointFollowerOptions options, std::vector<Waypoint> waypoints)
@@ -82,6 +84,29 @@ DriveCommand WaypointFollower::Update(const Pose2& pose) {
     }
   }
   return Stop();
+}
+
+void DeclareOptions(OptionScope scope, WaypointFollowerOptions& o) {
+  scope.AddDouble("cruise_speed", &o.cruise_speed, "m/s",
+                  "forward speed on straight legs (0.076 m/s: the miner's cruise, three inches per second, 6.4.2)",
+                  0.001, 5.0);
+  scope.AddDouble("turn_rate", &o.turn_rate, "rad/s",
+                  "yaw rate when turning in place, slowed near the target heading (0.1 rad/s)", 0.001, 3.0);
+  scope.AddDouble("position_tolerance", &o.position_tolerance, "m",
+                  "a station counts as reached inside this radius (0.1 m: well inside what a scan match corrects)",
+                  0.001, 10.0);
+  scope.AddDouble("heading_tolerance", &o.heading_tolerance, "rad",
+                  "final heading tolerance at a station before it counts as reached (0.05 rad, 3 deg)", 0.001, 1.0);
+  scope.AddDouble("align_tolerance", &o.align_tolerance, "rad",
+                  "heading error above which the vehicle stops and turns in place instead of steering (0.08 rad): "
+                  "the miner has one turning radius only",
+                  0.001, 1.5);
+  scope.AddDouble("steering_gain", &o.steering_gain, "1/s",
+                  "yaw rate per rad of heading error while driving, to cancel drift gently (1)", 0.0, 100.0);
+  scope.AddDouble("command_timeout", &o.command_timeout, "s",
+                  "validity of each command sent: the vehicle stops when no fresh one arrives, so a few "
+                  "control periods",
+                  0.001, 60.0);
 }
 
 }  // namespace minenav

@@ -21,6 +21,10 @@ struct WaypointFollowerOptions {
   double command_timeout = 0.5;      // s, validity of each command sent
 };
 
+class OptionScope;
+// Declares every field of WaypointFollowerOptions under `scope` (unit, meaning, range).
+void DeclareOptions(OptionScope scope, WaypointFollowerOptions& o);
+
 struct Waypoint {
   Pose2 pose;
   bool stop_and_align = true;  // turn to pose.theta on arrival (a scan station)

@@ -352,4 +352,22 @@ int RunNodeMain(const std::string& process, const std::function<int()>& body) {
   }
 }
 
+int RunNodeProcess(const std::string& process, const std::string& summary, std::vector<std::string>& args,
+                   const std::function<void(ConfigSchema&)>& declare, const std::function<int(NodeRuntime&)>& run) {
+  return RunNodeMain(process, [&] {
+    ConfigSchema schema(process, summary);
+    NodeRuntime runtime(process, schema);
+    declare(schema);
+    schema.AddHelpEpilog("Exit codes: 0 ok, 2 bad flag or input file, 3 runtime failure.\n");
+    if (schema.Parse(args) == ParseOutcome::kExit) return 0;
+    return run(runtime);
+  });
+}
+
+int RunNodeProcess(const std::string& process, const std::string& summary, int argc, const char* const* argv,
+                   const std::function<void(ConfigSchema&)>& declare, const std::function<int(NodeRuntime&)>& run) {
+  std::vector<std::string> args(argv + (argc > 0 ? 1 : 0), argv + argc);
+  return RunNodeProcess(process, summary, args, declare, run);
+}
+
 }  // namespace minenav

@@ -155,4 +155,14 @@ class NodeRuntime {
 // InputError (bad flags, config or input files), 3 for any other failure.
 int RunNodeMain(const std::string& process, const std::function<int()>& body);
 
+// A process's main in one call, under RunNodeMain: a schema with the common options (the
+// runtime's) and the process's own (`declare`), the exit codes appended to --help, the
+// command line parsed (--help, --print-config, --print-options-table: exit 0), then `run`
+// with the runtime not yet started (it validates, loads, calls runtime.Start() and wires its
+// node). `args` (without argv[0]) are read after `declare`, which may take flags out of them.
+int RunNodeProcess(const std::string& process, const std::string& summary, std::vector<std::string>& args,
+                   const std::function<void(ConfigSchema&)>& declare, const std::function<int(NodeRuntime&)>& run);
+int RunNodeProcess(const std::string& process, const std::string& summary, int argc, const char* const* argv,
+                   const std::function<void(ConfigSchema&)>& declare, const std::function<int(NodeRuntime&)>& run);
+
 }  // namespace minenav

@@ -6,7 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "common/node/conversions.h"
-#include "common/node/fake_bus.h"
+#include "common/node/fake_runtime.h"
 #include "minenav/heartbeat_t.hpp"
 #include "minenav/ladar_scan_t.hpp"
 #include "minenav/odometry_t.hpp"
@@ -37,12 +37,6 @@ odometry_t Odometry(int64_t utime, double x) {
 
 struct Harness {
   explicit Harness(const std::string& initial) {
-    auto owned = std::make_unique<FakeBus>();
-    bus = owned.get();
-    NodeOptions node_options;
-    node_options.heartbeat_period = 1.0;
-    runtime = std::make_unique<NodeRuntime>("test_estimator", node_options);
-    runtime->StartWith(std::move(owned), clock);
     runtime->SpinOnce(0);  // starts the clock: the first heartbeat
     options.initial = initial;
     options.pose_channel = "POSE_TEST";
@@ -53,8 +47,9 @@ struct Harness {
     bus->HandleFor(0);
   }
   ManualClock clock{kT0};
-  FakeBus* bus = nullptr;
-  std::unique_ptr<NodeRuntime> runtime;
+  FakeRuntime fake{clock, /*heartbeat_period=*/1.0, "test_estimator"};
+  FakeBus* bus = &fake.bus();
+  NodeRuntime* runtime = &fake.runtime();
   ScanEstimationOptions options;
 };
 

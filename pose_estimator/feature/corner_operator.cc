@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "common/config.h"
 #include "pose_estimator/feature/incremental_line_fitter.h"
 
 namespace minenav {
@@ -108,6 +109,32 @@ std::vector<CornerCandidate> ApplyCornerOperator(const std::vector<Eigen::Vector
     merged.push_back(c);
   }
   return merged;
+}
+
+void DeclareOptions(OptionScope scope, CornerOperatorOptions& o) {
+  scope.AddDouble("arm_length", &o.arm_length, "m",
+                  "length of each arm of the corner template: long enough to average the range noise, short "
+                  "enough to fit between features (0.8 m)",
+                  0.05, 10.0);
+  scope.AddInt("min_arm_points", &o.min_arm_points, "points an arm needs to be fit (5)", 2, 100000);
+  scope.AddDouble("min_arm_extent", &o.min_arm_extent, "1",
+                  "fraction of arm_length an arm must span: an arm cut short by a gap is not trusted (0.7)", 0.0,
+                  1.0);
+  scope.AddDouble("min_corner_angle", &o.min_corner_angle, "rad",
+                  "smallest angle between the two arms of a corner: mine corners are 'around 90 degrees' (60 deg)",
+                  0.0, 3.2);
+  scope.AddDouble("max_corner_angle", &o.max_corner_angle, "rad",
+                  "largest angle between the two arms of a corner (120 deg)", 0.0, 3.2);
+  scope.AddDouble("max_arm_rms", &o.max_arm_rms, "m",
+                  "straightness of each arm: largest RMS of its line fit (0.15 m, ~1.5 sigma of the Cyclone)", 0.001,
+                  10.0);
+  scope.AddDouble("min_arm_to_ray_angle", &o.min_arm_to_ray_angle, "rad",
+                  "an arm closer than this to the ray through the vertex is seen at a grazing angle or is a streak "
+                  "of mixed pixels at an occlusion (2.2): no corner there (15 deg)",
+                  0.0, 1.6);
+  scope.AddDouble("min_corner_separation", &o.min_corner_separation, "1",
+                  "corners closer than this fraction of arm_length are one corner, the better fit wins (0.5)", 0.0,
+                  10.0);
 }
 
 }  // namespace minenav

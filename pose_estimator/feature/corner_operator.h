@@ -27,6 +27,10 @@ struct CornerOperatorOptions {
   double min_corner_separation = 0.5;
 };
 
+class OptionScope;
+// Declares every field of CornerOperatorOptions under `scope` (unit, meaning, range).
+void DeclareOptions(OptionScope scope, CornerOperatorOptions& o);
+
 struct CornerCandidate {
   int index = 0;  // index into the piece of the point the operator was centred on
   Eigen::Vector2d vertex = Eigen::Vector2d::Zero();  // intersection of the two arm lines

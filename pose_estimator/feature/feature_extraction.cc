@@ -5,6 +5,7 @@
 #include <limits>
 #include <optional>
 
+#include "common/config.h"
 #include "common/scan_split.h"
 #include "pose_estimator/feature/incremental_line_fitter.h"
 
@@ -364,6 +365,46 @@ ExtractedFeatures ExtractFeatures(const LadarScan& scan, const ExtractionOptions
   }
   SortByAzimuth(&out.features);
   return out;
+}
+
+void DeclareOptions(OptionScope scope, ExtractionOptions& o) {
+  scope.AddDouble("break_distance", &o.break_distance, "m",
+                  "a gap between successive points larger than this (plus break_range_factor of the range) breaks "
+                  "the scan into pieces at occlusions (0.3 m)",
+                  0.01, 100.0);
+  scope.AddDouble("break_range_factor", &o.break_range_factor, "1",
+                  "plus this fraction of the range: points on a wall seen at a grazing angle lie farther apart far "
+                  "away (0.05)",
+                  0.0, 10.0);
+  scope.AddInt("min_piece_points", &o.min_piece_points, "pieces with fewer points are thrown out as clutter (6)", 1,
+               100000);
+  DeclareOptions(scope.Nested("corner"), o.corner);
+  scope.AddDouble("noise_sigma", &o.noise_sigma, "m",
+                  "range noise of the sensor, for the line fits (0.1 m: the Cyclone's; the Typhoon's is 0.044)",
+                  0.001, 1.0);
+  scope.AddDouble("outlier_factor", &o.outlier_factor, "1",
+                  "line fits drop points farther than this many noise_sigma and refit, so clutter against a wall "
+                  "does not bend the line (3)",
+                  0.5, 100.0);
+  scope.AddDouble("corner_gap", &o.corner_gap, "m",
+                  "points this close to a corner stay out of the line fits: the corner's rounding would bend the "
+                  "line (0.15 m)",
+                  0.0, 10.0);
+  scope.AddInt("min_line_points", &o.min_line_points, "points a line needs after dropping outliers (8)", 2, 100000);
+  scope.AddInt("split_run_points", &o.split_run_points,
+               "a run of this many consecutive points off a line splits it in two (a small column jutting out) (3)",
+               1, 100000);
+  scope.AddDouble("min_line_length", &o.min_line_length, "m",
+                  "shorter lines are not features: their direction is too uncertain (0.5 m)", 0.0, 100.0);
+  scope.AddDouble("max_line_rms", &o.max_line_rms, "m",
+                  "largest RMS of a line fit after dropping outliers, ~1.3 noise_sigma: a curved rib or rubble "
+                  "gives no line (0.13 m)",
+                  0.001, 10.0);
+  scope.AddDouble("min_inlier_fraction", &o.min_inlier_fraction, "1",
+                  "fraction of a span's points that must lie on its line (0.7)", 0.0, 1.0);
+  scope.AddBool("occlusion_corners", &o.occlusion_corners,
+                "report the visible end of a piece that hides something farther (or open space) as an occlusion "
+                "corner (arms: the line and the ray)");
 }
 
 }  // namespace minenav

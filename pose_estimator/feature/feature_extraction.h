@@ -36,6 +36,10 @@ struct ExtractionOptions {
   bool occlusion_corners = true;      // report occlusion corners at occluding piece ends
 };
 
+class OptionScope;
+// Declares every field of ExtractionOptions under `scope` (unit, meaning, range).
+void DeclareOptions(OptionScope scope, ExtractionOptions& o);
+
 struct ExtractedFeatures {
   std::vector<Feature> features;  // sensor frame, ordered by azimuth
   int num_points = 0;             // valid readings

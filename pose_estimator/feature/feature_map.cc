@@ -4,6 +4,8 @@
 #include <cmath>
 #include <numeric>
 
+#include "common/config.h"
+
 namespace minenav {
 
 FeatureMapBuild BuildFeatureMap(const std::vector<Segment>& segments,
@@ -57,6 +59,13 @@ FeatureMapBuild BuildFeatureMap(const std::vector<Segment>& segments,
     }
   }
   return out;
+}
+
+void DeclareOptions(OptionScope scope, FeatureMapOptions& o) {
+  scope.AddDouble("vertex_merge_distance", &o.vertex_merge_distance, "m",
+                  "map segment endpoints closer than this are one vertex, so two segments sharing an end make a "
+                  "corner; shorter segments are dropped (1 cm: survey rounding)",
+                  1e-6, 10.0);
 }
 
 }  // namespace minenav

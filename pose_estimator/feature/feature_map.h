@@ -15,6 +15,10 @@ struct FeatureMapOptions {
   double vertex_merge_distance = 0.01;  // m, endpoints closer than this are one vertex
 };
 
+class OptionScope;
+// Declares every field of FeatureMapOptions under `scope` (unit, meaning, range).
+void DeclareOptions(OptionScope scope, FeatureMapOptions& o);
+
 struct FeatureMap {
   std::vector<Segment> segments;
   std::vector<Eigen::Vector2d> vertices;            // merged endpoints

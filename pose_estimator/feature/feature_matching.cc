@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "common/config.h"
+
 namespace minenav {
 namespace {
 
@@ -209,6 +211,22 @@ FeatureMatchResult MatchFeatures(const std::vector<Feature>& sensed, const std::
   result.search_nodes = s.nodes;
   result.search_complete = s.complete;
   return result;
+}
+
+void DeclareOptions(OptionScope scope, MatchingOptions& o) {
+  scope.AddDouble("angerr", &o.angerr, "rad", "bound on the initial heading error (2.1.5; thesis 5 deg)", 0.0, 1.5);
+  scope.AddDouble("poserr", &o.poserr, "m", "bound on the initial position error (2.1.5; thesis 1 m)", 0.0, 100.0);
+  scope.AddDouble("concerr", &o.concerr, "rad", "tolerance on concave angles (thesis 10 deg)", 0.0, 3.0);
+  scope.AddDouble("disterr", &o.disterr, "m", "tolerance on line distances beyond poserr (thesis 0.5 m)", 0.0,
+                  100.0);
+  scope.AddDouble("bindisterr", &o.bindisterr, "m", "tolerance of the binary distance constraints (thesis 0.5 m)",
+                  0.0, 100.0);
+  scope.AddDouble("binangerr", &o.binangerr, "rad", "tolerance of the binary angle constraints (thesis 5 deg)", 0.0,
+                  3.0);
+  scope.AddInt("max_search_nodes", &o.max_search_nodes,
+               "bound on the nodes of the depth-first search, a time guard: a search cut short says so "
+               "(search_complete false) (200000)",
+               1, 1000000000);
 }
 
 }  // namespace minenav

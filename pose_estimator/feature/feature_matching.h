@@ -37,6 +37,10 @@ struct MatchingOptions {
   int max_search_nodes = 200000;      // bound on the depth-first search (time guard)
 };
 
+class OptionScope;
+// Declares every field of MatchingOptions under `scope` (unit, meaning, range).
+void DeclareOptions(OptionScope scope, MatchingOptions& o);
+
 struct FeaturePair {
   int sensed = 0;  // index into the sensed list
   int model = 0;   // index into the model list

@@ -7,6 +7,8 @@
 #include <limits>
 #include <sstream>
 
+#include "common/config.h"
+
 namespace minenav {
 
 FeatureResidual ComputeResidual(const Feature& sensed, const Feature& model, const Pose2& pose) {
@@ -240,6 +242,44 @@ MinimizationResult MinimizeFeatureError(const std::vector<Correspondence>& input
     result.reason = "converged with " + std::to_string(pairs.size()) + " correspondences";
   }
   return result;
+}
+
+void DeclareOptions(OptionScope scope, MinimizationOptions& o) {
+  scope.AddInt("max_iterations", &o.max_iterations, "Gauss-Newton iteration limit (30)", 1, 10000);
+  scope.AddDouble("step_tolerance", &o.step_tolerance, "m, rad",
+                  "converged when a step is smaller in x, y and heading (1e-6)", 1e-12, 1.0);
+  scope.AddDouble("point_sigma", &o.point_sigma, "m",
+                  "range noise per scan point, for the feature weights (0.1 m: the Cyclone's)", 0.001, 1.0);
+  scope.AddDouble("corner_variance_factor", &o.corner_variance_factor, "1",
+                  "a corner's variance per axis is this x sigma^2 / points: a vertex is pinned less well than a "
+                  "line by the same points (8)",
+                  0.01, 1000.0);
+  scope.AddDouble("min_variance", &o.min_variance, "m^2",
+                  "floor of corner-axis and line-distance variances: a fit of many points is only as good as the "
+                  "wall is straight and the map surveyed (4e-4: 2 cm)",
+                  0.0, 1.0);
+  scope.AddDouble("min_angle_variance", &o.min_angle_variance, "rad^2",
+                  "floor of line-orientation variances (7.6e-5: 0.5 deg)", 0.0, 1.0);
+  scope.AddDouble("max_std", &o.max_std, "m",
+                  "a direction less certain than this (rad x 1 m for heading) counts as unobservable: only "
+                  "parallel walls, one corner (0.5 m)",
+                  1e-6, 1000.0);
+  scope.AddDouble("unobservable_variance", &o.unobservable_variance, "m^2",
+                  "variance put into the covariance along an unobservable direction (1e6: unknown)", 1.0, 1e12);
+  scope.AddDouble("max_converged_std", &o.max_converged_std, "m",
+                  "a converged pose needs every direction's std below this: a corridor pinned by one weak corner "
+                  "is not converged (0.1 m)",
+                  1e-6, 1000.0);
+  scope.AddDouble("max_corner_error", &o.max_corner_error, "m",
+                  "after convergence a corner pair farther apart is a mismatch: the worst is dropped and the "
+                  "minimisation repeated (0.15 m; the matcher's 0.5 m tolerances let near-alternatives through)",
+                  0.001, 100.0);
+  scope.AddDouble("max_line_distance_error", &o.max_line_distance_error, "m",
+                  "the same gate for a line's distance (0.15 m)", 0.001, 100.0);
+  scope.AddDouble("max_line_angle_error", &o.max_line_angle_error, "rad",
+                  "the same gate for a line's orientation (2 deg)", 1e-4, 3.2);
+  scope.AddInt("min_kept", &o.min_kept,
+               "mismatched correspondences are dropped one at a time while more than this remain (2)", 0, 1000);
 }
 
 }  // namespace minenav

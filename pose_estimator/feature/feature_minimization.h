@@ -56,6 +56,10 @@ struct MinimizationOptions {
   int min_kept = 2;  // correspondences are dropped one at a time while more than this remain
 };
 
+class OptionScope;
+// Declares every field of MinimizationOptions under `scope` (unit, meaning, range).
+void DeclareOptions(OptionScope scope, MinimizationOptions& o);
+
 struct Correspondence {
   Feature sensed;  // sensor frame
   Feature model;   // map frame

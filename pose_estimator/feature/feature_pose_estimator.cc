@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "common/config.h"
+
 namespace minenav {
 namespace {
 
@@ -212,6 +214,27 @@ FeaturePoseResult FeaturePoseEstimator::Estimate(const LadarScan& scan,
     }
   }
   return result;
+}
+
+void DeclareOptions(OptionScope scope, FeaturePoseEstimatorOptions& o) {
+  // Not "map": a process's `map` is the map file.
+  DeclareOptions(scope.Nested("feature_map"), o.map);
+  DeclareOptions(scope.Nested("prediction"), o.prediction);
+  DeclareOptions(scope.Nested("extraction"), o.extraction);
+  DeclareOptions(scope.Nested("matching"), o.matching);
+  DeclareOptions(scope.Nested("minimization"), o.minimization);
+  scope.AddInt("min_matches", &o.min_matches,
+               "consistent correspondences needed to call a pose converged (3: three pin x, y and heading)", 1, 1000);
+  scope.AddDouble("min_support", &o.min_support, "1",
+                  "fraction of scan points that must lie within support_distance of the map at the estimate "
+                  "(ours: clutter lowers it, a wrong pose lowers it more); 0 = no check (0.4)",
+                  0.0, 1.0);
+  scope.AddDouble("support_distance", &o.support_distance, "m",
+                  "how near the map a scan point must lie to support the estimate (0.3 m, ~3 sigma)", 0.0, 100.0);
+  scope.AddDouble("max_median_distance_factor", &o.max_median_distance_factor, "1",
+                  "the median point-to-map distance at the estimate must not exceed this many "
+                  "minimization.point_sigma (a right pose gives ~0.7); 0 = no check (2)",
+                  0.0, 1000.0);
 }
 
 }  // namespace minenav

@@ -102,4 +102,10 @@ PointSupport MeasureSupport(const LadarScan& scan, const Pose2& map_T_sensor,
 // One-line reason if the options are inconsistent, else empty.
 std::string ValidateOptions(const FeaturePoseEstimatorOptions& options);
 
+class OptionScope;
+// Declares every field of FeaturePoseEstimatorOptions under `scope`, the nested structs as
+// feature_map.*, prediction.*, extraction.* (extraction.corner.*), matching.* and
+// minimization.*; stage_clock is a function a program passes, not a parameter.
+void DeclareOptions(OptionScope scope, FeaturePoseEstimatorOptions& o);
+
 }  // namespace minenav

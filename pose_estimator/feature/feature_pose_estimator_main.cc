@@ -36,40 +36,29 @@ struct ProcessOptions {
     o.pose_channel = "POSE_FPE";
     return o;
   }();
+  FeaturePoseEstimatorOptions estimator;
 };
 
-void Declare(ConfigSchema& s, ProcessOptions& p, FeaturePoseEstimatorOptions& e) {
+void DeclareOptions(ConfigSchema& s, ProcessOptions& p) {
   s.AddString("map", &p.map, "line map JSON ({\"segments\": ...}); empty = take it from --map-channel");
   DeclareScanEstimationOptions(s, &p.estimation, {"odometry", "chained"}, "fpe");
-  MatchingOptions& m = e.matching;
-  s.AddDouble("angerr", &m.angerr, "rad", "bound on the initial heading error (2.1.5; thesis 5 deg)", 0.0, 1.5);
-  s.AddDouble("poserr", &m.poserr, "m", "bound on the initial position error (2.1.5; thesis 1 m)", 0.0, 100.0);
-  s.AddDouble("concerr", &m.concerr, "rad", "tolerance on concave angles (thesis 10 deg)", 0.0, 3.0);
-  s.AddDouble("disterr", &m.disterr, "m", "tolerance on line distances beyond poserr (thesis 0.5 m)", 0.0, 100.0);
-  s.AddDouble("bindisterr", &m.bindisterr, "m", "tolerance of the binary distance constraints (thesis 0.5 m)", 0.0, 100.0);
-  s.AddDouble("binangerr", &m.binangerr, "rad", "tolerance of the binary angle constraints (thesis 5 deg)", 0.0, 3.0);
-  s.AddDouble("arm_length", &e.extraction.corner.arm_length, "m", "corner operator arm length", 0.05, 10.0);
-  s.AddDouble("noise_sigma", &e.extraction.noise_sigma, "m", "range noise of the sensor (line fits)", 0.001, 1.0);
-  s.AddDouble("point_sigma", &e.minimization.point_sigma, "m", "range noise of the sensor (feature weights)", 0.001, 1.0);
-  s.AddDouble("max_range", &e.prediction.max_range, "m", "feature prediction range limit (also the scan's)", 0.1, 1000.0);
-  s.AddInt("min_matches", &e.min_matches, "consistent correspondences needed to call a pose converged", 1, 1000);
-  s.AddDouble("min_support", &e.min_support, "1", "fraction of scan points that must lie on the map at the estimate", 0.0, 1.0);
+  const OptionScope estimator(s);
+  DeclareOptions(estimator, p.estimator);
+  // The flat flags of before the options nested (issue 12).
+  estimator.Nested("matching").AddFlatAliases({"angerr", "poserr", "concerr", "disterr", "bindisterr", "binangerr"});
+  estimator.Nested("extraction").Nested("corner").AddFlatAliases({"arm_length"});
+  estimator.Nested("extraction").AddFlatAliases({"noise_sigma"});
+  estimator.Nested("minimization").AddFlatAliases({"point_sigma"});
+  estimator.Nested("prediction").AddFlatAliases({"max_range"});
   s.AddChannel("map_channel", &p.map_channel, "subscribes", "line_map_t", "the line map when --map is empty");
-  s.AddHelpEpilog(
-      "Examples:\n"
-      "  feature_pose_estimator --log run.lcm --map mockup.json --poses-out est.csv\n"
-      "  feature_pose_estimator --map mockup.json --angerr 45deg       (live)\n"
-      "Exit codes: 0 ok, 2 bad flag or input file, 3 runtime failure.\n");
+  s.AddHelpEpilog(R"(Examples:
+  feature_pose_estimator --log run.lcm --map mockup.json --poses-out est.csv
+  feature_pose_estimator --map mockup.json --angerr 45deg       (live)
+)");
 }
 
-int Main(int argc, char** argv) {
-  ConfigSchema schema("feature_pose_estimator",
-                      "Feature-based pose estimator (thesis ch. 2): scans + odometry + line map -> POSE_FPE.");
-  NodeRuntime runtime("feature_pose_estimator", schema);
-  ProcessOptions p;
-  FeaturePoseEstimatorOptions eo;
-  Declare(schema, p, eo);
-  if (schema.Parse(argc, argv) == ParseOutcome::kExit) return 0;
+int Run(NodeRuntime& runtime, const ProcessOptions& p) {
+  const FeaturePoseEstimatorOptions& eo = p.estimator;
   if (const std::string why = ValidateOptions(eo); !why.empty()) throw UsageError(why);
   std::unique_ptr<FeaturePoseEstimator> estimator;
   if (!p.map.empty()) {
@@ -102,5 +91,10 @@ int Main(int argc, char** argv) {
 }  // namespace minenav
 
 int main(int argc, char** argv) {
-  return minenav::RunNodeMain("feature_pose_estimator", [&] { return minenav::Main(argc, argv); });
+  minenav::ProcessOptions options;
+  return minenav::RunNodeProcess(
+      "feature_pose_estimator",
+      "Feature-based pose estimator (thesis ch. 2): scans + odometry + line map -> POSE_FPE.", argc, argv,
+      [&](minenav::ConfigSchema& s) { DeclareOptions(s, options); },
+      [&](minenav::NodeRuntime& runtime) { return Run(runtime, options); });
 }

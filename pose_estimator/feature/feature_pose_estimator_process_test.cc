@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <random>
 
+#include "common/config_testing.h"
 #include "common/file_io.h"
 #include "common/node/conversions.h"
 #include "common/node/event_log.h"
@@ -104,6 +105,21 @@ TEST(FeaturePoseEstimatorProcess, BadFlagsAndFilesExitTwoWithOneLine) {
   EXPECT_EQ(r.exit_code, 0);
   EXPECT_NE(r.output.find("POSE_FPE"), std::string::npos);
   EXPECT_NE(r.output.find("--angerr"), std::string::npos);
+}
+
+// Issue 12: the estimator's options nested (matching.*, extraction.*, ...); the flat flags
+// scripts and tests have always used set the nested keys.
+TEST(FeaturePoseEstimatorProcess, TheFlatFlagsOfBeforeSetTheNestedKeys) {
+  testing::TempDir dir("minenav_fpe_process_test");
+  const std::vector<FlagAndConfigLine> flags = {
+      {"angerr", "matching.angerr = 0.2"},          {"poserr", "matching.poserr = 2"},
+      {"concerr", "matching.concerr = 0.3"},        {"disterr", "matching.disterr = 0.4"},
+      {"bindisterr", "matching.bindisterr = 0.6"},  {"binangerr", "matching.binangerr = 0.1"},
+      {"arm-length", "extraction.corner.arm_length = 0.6"}, {"noise-sigma", "extraction.noise_sigma = 0.05"},
+      {"point-sigma", "minimization.point_sigma = 0.05"},   {"max-range", "prediction.max_range = 30"}};
+  const RunResult r = Fpe(PrintConfigArgs(flags), dir);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  ExpectConfigLines(r.output, flags);
 }
 
 }  // namespace

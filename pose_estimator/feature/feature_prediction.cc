@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "common/angle.h"
+#include "common/config.h"
 
 namespace minenav {
 namespace {
@@ -253,6 +254,21 @@ PredictedFeatures PredictFeatures(const FeatureMap& map, const Eigen::Vector2d& 
   std::stable_sort(out.features.begin(), out.features.end(),
                    [&](const Feature& a, const Feature& b) { return azimuth(a) < azimuth(b); });
   return out;
+}
+
+void DeclareOptions(OptionScope scope, PredictionOptions& o) {
+  scope.AddDouble("max_range", &o.max_range, "m",
+                  "the scanner's useful range: farther map parts are not predicted (50 m, the Cyclone's; each "
+                  "scan's own max_range caps it)",
+                  0.1, 1000.0);
+  scope.AddDouble("min_line_length", &o.min_line_length, "m",
+                  "shorter visible pieces of map segments are not predicted as lines: too few points would fall "
+                  "on them to fit (0.3 m)",
+                  0.0, 100.0);
+  scope.AddDouble("collinear_angle", &o.collinear_angle, "rad",
+                  "visible neighbours bending less than this are one line and no corner: maps often split a "
+                  "straight wall into several segments (0.035 rad, 2 deg)",
+                  0.0, 1.0);
 }
 
 }  // namespace minenav

@@ -28,6 +28,10 @@ struct PredictionOptions {
   double collinear_angle = 0.035;
 };
 
+class OptionScope;
+// Declares every field of PredictionOptions under `scope` (unit, meaning, range).
+void DeclareOptions(OptionScope scope, PredictionOptions& o);
+
 struct VertexLabel {
   bool visible = false;
   bool occluding = false;  // its segment hides something farther (or open space) behind it

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "common/config.h"
+
 #include "pose_estimator/iconic/brute_force_correspondence.h"
 #include "pose_estimator/iconic/grid_search_correspondence.h"
 #include "pose_estimator/iconic/lookup_table_correspondence.h"
@@ -116,6 +118,22 @@ SegmentMatch BruteForceCorrespondence::Nearest(const Eigen::Vector2d& p, double 
   }
   if (best < 0 || best_d2 > max_distance * max_distance) return SegmentMatch{};
   return MakeMatch(p, prepared_[static_cast<size_t>(best)], best, best_d2);
+}
+
+void DeclareOptions(OptionScope scope, CorrespondenceOptions& o) {
+  scope.AddEnum("method", &o.method,
+                "how a point finds its nearest segment: brute (Cox, every segment), grid (Gonzalez, the cells "
+                "within the threshold), lookup (the thesis's grown table, one cell per point: the fastest, 3.1.1)",
+                {CorrespondenceMethod::kBruteForce, CorrespondenceMethod::kGridSearch,
+                 CorrespondenceMethod::kLookupTable});
+  scope.AddDouble("cell_size", &o.cell_size, "m",
+                  "grid cell of the grid search and the lookup table over a surveyed or fit map; 0 = automatic: "
+                  "half the median segment length in [0.03, 1] m, which keeps the cell lists short",
+                  0.0, 10.0);
+  scope.AddDouble("max_distance", &o.max_distance, "m",
+                  "how far from the map the lookup table is grown (points farther never match); raised to "
+                  "match.initial_threshold when smaller, so 3 m covers the default",
+                  0.01, 1000.0);
 }
 
 }  // namespace minenav

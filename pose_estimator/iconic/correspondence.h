@@ -74,6 +74,10 @@ struct CorrespondenceOptions {
   double max_distance = 3.0;
 };
 
+class OptionScope;
+// Declares every field of CorrespondenceOptions under `scope` (unit, meaning, range).
+void DeclareOptions(OptionScope scope, CorrespondenceOptions& o);
+
 // Builds the chosen structure over `segments` (which should be cleaned by
 // PrepareSegmentMap first: zero-length and duplicate segments are tolerated but waste time).
 std::unique_ptr<CorrespondenceSearch> MakeCorrespondenceSearch(std::vector<Segment> segments,

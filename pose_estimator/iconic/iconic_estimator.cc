@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "common/config.h"
+
 namespace minenav {
 
 const char* ToString(IconicMode mode) {
@@ -162,6 +164,8 @@ std::vector<IconicMatchResult> EstimateSequence(const std::vector<LadarScan>& sc
   multi.max_pair_distance = options.max_pair_distance;
   multi.point_stride = options.point_stride;
   multi.every_overlapping_scan = options.every_overlapping_scan;
+  multi.epsilon_translation = options.simultaneous_epsilon_translation;
+  multi.epsilon_rotation = options.simultaneous_epsilon_rotation;
   const MultiScanResult out = MatchScansSimultaneously(inputs, multi);
   for (size_t k = 0; k < scans.size(); ++k) {
     const int i = input_of[k];
@@ -177,6 +181,35 @@ std::vector<IconicMatchResult> EstimateSequence(const std::vector<LadarScan>& sc
     r.status = inputs[static_cast<size_t>(i)].fixed && out.converged ? "ok: fixed scan" : out.status;
   }
   return results;
+}
+
+void DeclareOptions(OptionScope scope, IconicEstimatorOptions& o) {
+  scope.AddEnum("mode", &o.mode,
+                "which map each scan is matched to: surveyed (3.1, a surveyed line map), scan-map (3.2, polylines "
+                "fit to the first scan), first-scan (3.3, its raw polylines), all-previous (3.4, every earlier "
+                "scan), simultaneous (3.5, all scans to each other at once; batch only)",
+                {IconicMode::kSurveyed, IconicMode::kScanMap, IconicMode::kFirstScan, IconicMode::kAllPrevious,
+                 IconicMode::kSimultaneous});
+  DeclareOptions(scope.Nested("match"), o.match);
+  DeclareOptions(scope.Nested("correspondence"), o.correspondence);
+  // Not "map": a process's `map` is the map file.
+  DeclareOptions(scope.Nested("segment_map"), o.map);
+  DeclareOptions(scope.Nested("partial"), o.partial);
+  DeclareOptions(scope.Nested("fit"), o.fit);
+  scope.AddDouble("scan_map_cell_size", &o.scan_map_cell_size, "m",
+                  "lookup table cell of maps made of raw scans (first-scan, all-previous, simultaneous); 0 = "
+                  "automatic, finer: faster queries, much slower builds (0.1 m)",
+                  0.0, 10.0);
+  scope.AddBool("chain_odometry", &o.chain_odometry,
+                "sequential modes over a whole sequence: the given initial poses are drifting odometry, and each "
+                "scan starts from the last converged estimate moved by the odometry since (false: offline "
+                "surveys give initial estimates in the map frame)");
+  scope.AddBool("seed_simultaneous", &o.seed_simultaneous,
+                "simultaneous: start from the all-previous estimates, which tolerate dead-reckoning error, rather "
+                "than from the given poses");
+  DeclareMultiScanParameters(scope.Nested("simultaneous"),
+                             {&o.simultaneous_epsilon_translation, &o.simultaneous_epsilon_rotation,
+                              &o.max_pair_distance, &o.every_overlapping_scan, &o.point_stride});
 }
 
 }  // namespace minenav

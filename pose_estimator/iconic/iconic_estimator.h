@@ -52,7 +52,17 @@ struct IconicEstimatorOptions {
   double max_pair_distance = 60.0;  // m
   bool every_overlapping_scan = true;  // see MultiScanOptions
   int point_stride = 1;
+  // Convergence of the simultaneous adjustment (MultiScanOptions::epsilon_*), m and rad.
+  double simultaneous_epsilon_translation = 1e-3;
+  double simultaneous_epsilon_rotation = 1e-4;
 };
+
+class OptionScope;
+// Declares every field of IconicEstimatorOptions under `scope`: mode, scan_map_cell_size,
+// chain_odometry and seed_simultaneous at the scope, the nested structs as match.*,
+// correspondence.*, segment_map.*, partial.* and fit.*, and the fields the simultaneous mode
+// hands on to MultiScanOptions as simultaneous.* (max_pair_distance, epsilons, ...).
+void DeclareOptions(OptionScope scope, IconicEstimatorOptions& o);
 
 // Incremental estimator for modes kSurveyed .. kAllPrevious (one scan at a time, as the
 // live process needs). kSimultaneous goes through EstimateSequence.

@@ -7,6 +7,8 @@
 #include <cmath>
 #include <sstream>
 
+#include "common/config.h"
+
 #include "pose_estimator/iconic/iconic_residual.h"
 
 namespace minenav {
@@ -197,6 +199,43 @@ IconicMatchResult MatchScanToMap(const LadarScan& scan, const CorrespondenceSear
     return result;
   }
   return MatchPointsToMap(points, map, initial, options);
+}
+
+void DeclareOptions(OptionScope scope, IconicMatchOptions& o) {
+  scope.AddDouble("initial_threshold", &o.initial_threshold, "m",
+                  "correspondence threshold of the first iteration: must cover what the initial pose error does "
+                  "to the points (2 m: ~1 m and a few degrees of odometry error at 10 m range)",
+                  0.01, 100.0);
+  scope.AddDouble("min_threshold", &o.min_threshold, "m",
+                  "floor of the threshold, which shrinks to the median correspondence distance each iteration: "
+                  "~3 sigma of the range noise (0.3 m for the Cyclone's 0.1 m; 0.15 m for the Typhoon)",
+                  0.001, 100.0);
+  scope.AddDouble("epsilon_translation", &o.epsilon_translation, "m",
+                  "converged when no x/y step is larger (0.1 mm: far below the range noise)", 1e-9, 1.0);
+  scope.AddDouble("epsilon_rotation", &o.epsilon_rotation, "rad",
+                  "converged when no heading step is larger (1e-5 rad moves a point at 10 m by 0.1 mm)", 1e-12, 1.0);
+  scope.AddInt("max_iterations", &o.max_iterations,
+               "Gauss-Newton iteration limit in case the epsilons are too small (3.1.2); 50 is several times "
+               "what a converging match takes",
+               1, 10000);
+  scope.AddInt("min_correspondences", &o.min_correspondences,
+               "fewer matched points = no estimate; 10 keeps the three unknowns well over-determined", 3, 1000000);
+  scope.AddEnum("loss", &o.loss,
+                "robust loss (IRLS): none is the thesis's plain least squares; huber or cauchy keep clutter and "
+                "mixed pixels from pulling the estimate",
+                {RobustLoss::kNone, RobustLoss::kHuber, RobustLoss::kCauchy});
+  scope.AddDouble("loss_scale", &o.loss_scale, "m",
+                  "scale of the robust loss: residuals beyond it lose weight (0.1 m ~ the Cyclone's range noise)",
+                  1e-4, 10.0);
+  scope.AddBool("reject_open_ends", &o.reject_open_ends,
+                "skip points nearest to the open end of a polyline: they see what the map does not hold, and "
+                "pairing them with the end would pull the estimate along the wall");
+  scope.AddDouble("max_step_translation", &o.max_step_translation, "m",
+                  "a longer x/y step is cut to this: with a large first threshold Gauss-Newton can overshoot "
+                  "(1 m: about the initial error it must recover)",
+                  1e-6, 100.0);
+  scope.AddDouble("max_step_rotation", &o.max_step_rotation, "rad",
+                  "a larger heading step is cut to this, for the same reason (0.35 rad, 20 deg)", 1e-6, 3.2);
 }
 
 }  // namespace minenav

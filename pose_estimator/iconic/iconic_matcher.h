@@ -47,6 +47,10 @@ struct IconicMatchOptions {
 // Returns "" if the options are consistent, else a one-line reason.
 std::string ValidateIconicMatchOptions(const IconicMatchOptions& options);
 
+class OptionScope;
+// Declares every field of IconicMatchOptions under `scope` (unit, meaning, range).
+void DeclareOptions(OptionScope scope, IconicMatchOptions& o);
+
 // The core (common/match_result.h) as this matcher fills it: pose = the last iterate;
 // covariance = sigma^2 (J^T W J)^-1 from the normal equations, sigma^2 the weighted residual
 // variance (zero when not converged); num_points = the points given; num_inliers = the

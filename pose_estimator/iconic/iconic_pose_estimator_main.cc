@@ -36,9 +36,6 @@ namespace {
 
 struct ProcessOptions {
   std::string map;
-  std::string mode = "surveyed";
-  std::string method = "lookup";
-  std::string loss = "none";
   std::string map_channel = "LINE_MAP";
   std::string contour_channel = "CONTOUR_MAP";
   ScanEstimationOptions estimation = [] {
@@ -47,43 +44,29 @@ struct ProcessOptions {
     o.pose_channel = "POSE_IPE";
     return o;
   }();
+  IconicEstimatorOptions estimator;
 };
 
-void Declare(ConfigSchema& s, ProcessOptions& p, IconicEstimatorOptions& e) {
+void DeclareOptions(ConfigSchema& s, ProcessOptions& p) {
   s.AddString("map", &p.map, "surveyed line map JSON ({\"segments\": ...}); empty = from LINE_MAP or CONTOUR_MAP");
-  s.AddString("mode", &p.mode,
-              "surveyed (3.1, needs a map), scan-map (3.2), first-scan (3.3), all-previous (3.4), "
-              "simultaneous (3.5, batch only)",
-              {"surveyed", "scan-map", "first-scan", "all-previous", "simultaneous"});
   DeclareScanEstimationOptions(s, &p.estimation, {"auto", "odometry", "chained"}, "ipe");
-  s.AddString("method", &p.method, "correspondence: brute (Cox), grid (Gonzalez), lookup (thesis 3.1.1)",
-              {"brute", "grid", "lookup"});
-  IconicMatchOptions& m = e.match;
-  s.AddDouble("initial_threshold", &m.initial_threshold, "m", "correspondence threshold of the first iteration", 0.01, 100.0);
-  s.AddDouble("min_threshold", &m.min_threshold, "m", "floor of the shrinking threshold (~3 sigma of range noise)", 0.001, 100.0);
-  s.AddDouble("epsilon_translation", &m.epsilon_translation, "m", "convergence: largest x/y step", 1e-9, 1.0);
-  s.AddDouble("epsilon_rotation", &m.epsilon_rotation, "rad", "convergence: largest heading step", 1e-12, 1.0);
-  s.AddInt("max_iterations", &m.max_iterations, "Gauss-Newton iteration limit", 1, 10000);
-  s.AddInt("min_correspondences", &m.min_correspondences, "fewer matched points = no estimate", 3, 1000000);
-  s.AddString("loss", &p.loss, "robust loss: none, huber, cauchy", {"none", "huber", "cauchy"});
-  s.AddDouble("loss_scale", &m.loss_scale, "m", "scale of the robust loss", 1e-4, 10.0);
-  s.AddBool("reject_open_ends", &m.reject_open_ends, "skip points nearest to the open end of a polyline");
-  s.AddDouble("cell_size", &e.correspondence.cell_size, "m", "grid cell of a surveyed/fit map; 0 = automatic", 0.0, 10.0);
-  s.AddDouble("scan_map_cell_size", &e.scan_map_cell_size, "m", "grid cell of maps made of raw scans", 0.0, 10.0);
-  s.AddDouble("break_distance", &e.partial.break_distance, "m", "gap that splits a scan into partial scans", 0.01, 100.0);
-  s.AddDouble("fit_segment_length", &e.fit.segment_length, "m", "segment length of polylines fit to a scan (scan-map)", 0.05, 100.0);
-  s.AddDouble("max_pair_distance", &e.max_pair_distance, "m", "simultaneous: scans farther apart are not paired", 0.0, 1e6);
-  s.AddInt("point_stride", &e.point_stride, "simultaneous: use every k-th point", 1, 1000);
-  s.AddBool("every_overlapping_scan", &e.every_overlapping_scan,
-            "simultaneous: a residual per overlapping scan (A.3) rather than for the nearest only");
+  const OptionScope estimator(s);
+  DeclareOptions(estimator, p.estimator);
+  // The flat flags of before the options nested (issue 12).
+  estimator.Nested("match").AddFlatAliases({"initial_threshold", "min_threshold", "epsilon_translation",
+                                            "epsilon_rotation", "max_iterations", "min_correspondences", "loss",
+                                            "loss_scale", "reject_open_ends"});
+  estimator.Nested("correspondence").AddFlatAliases({"method", "cell_size"});
+  estimator.Nested("partial").AddFlatAliases({"break_distance"});
+  estimator.Nested("fit").AddFlatAliases({"segment_length"}, "fit_");
+  estimator.Nested("simultaneous").AddFlatAliases({"max_pair_distance", "point_stride", "every_overlapping_scan"});
   s.AddChannel("map_channel", &p.map_channel, "subscribes", "line_map_t", "surveyed map when --map is empty");
   s.AddChannel("contour_channel", &p.contour_channel, "subscribes", "contour_map_t", "contour map as a line map when --map is empty");
-  s.AddHelpEpilog(
-      "Examples:\n"
-      "  iconic_pose_estimator --log survey.lcm --map mine.json --mode surveyed --poses-out est.csv\n"
-      "  iconic_pose_estimator --log survey.lcm --mode simultaneous --poses-out est.csv\n"
-      "  iconic_pose_estimator --map mine.json                               (live)\n"
-      "Exit codes: 0 ok, 2 bad flag or input file, 3 runtime failure.\n");
+  s.AddHelpEpilog(R"(Examples:
+  iconic_pose_estimator --log survey.lcm --map mine.json --mode surveyed --poses-out est.csv
+  iconic_pose_estimator --log survey.lcm --mode simultaneous --poses-out est.csv
+  iconic_pose_estimator --map mine.json                               (live)
+)");
 }
 
 // Contours as segments; a compressed map is inflated and validated first
@@ -97,17 +80,8 @@ std::vector<Segment> ContourMapSegments(const contour_map_t& m) {
   return out;
 }
 
-int Main(int argc, char** argv) {
-  ConfigSchema schema("iconic_pose_estimator",
-                      "Iconic pose estimator (thesis ch. 3): scans + odometry [+ map] -> POSE_IPE.");
-  NodeRuntime runtime("iconic_pose_estimator", schema);
-  ProcessOptions p;
-  IconicEstimatorOptions eo;
-  Declare(schema, p, eo);
-  if (schema.Parse(argc, argv) == ParseOutcome::kExit) return 0;
-  ParseIconicMode(p.mode, &eo.mode);
-  ParseCorrespondenceMethod(p.method, &eo.correspondence.method);
-  ParseRobustLoss(p.loss, &eo.match.loss);
+int Run(NodeRuntime& runtime, const ProcessOptions& p) {
+  const IconicEstimatorOptions& eo = p.estimator;
   if (const std::string why = ValidateIconicMatchOptions(eo.match); !why.empty()) throw UsageError(why);
   const bool batch = !runtime.options().log.empty();
   if (eo.mode == IconicMode::kSimultaneous && !batch)
@@ -148,7 +122,7 @@ int Main(int argc, char** argv) {
                           [&](const LadarScan& scan, const Pose2& initial, std::string*) -> std::optional<MatchResult> {
                             return estimator->AddScan(scan, initial);  // its core is what POSE_IPE carries
                           });
-  node.set_label(p.mode);
+  node.set_label(ToString(eo.mode));
   if (eo.mode == IconicMode::kSimultaneous) {
     node.EstimateAllAtEnd([&](const std::vector<LadarScan>& scans, const std::vector<Pose2>& initial) {
       const std::vector<IconicMatchResult> results = EstimateSequence(scans, initial, {}, eo);
@@ -162,5 +136,9 @@ int Main(int argc, char** argv) {
 }  // namespace minenav
 
 int main(int argc, char** argv) {
-  return minenav::RunNodeMain("iconic_pose_estimator", [&] { return minenav::Main(argc, argv); });
+  minenav::ProcessOptions options;
+  return minenav::RunNodeProcess(
+      "iconic_pose_estimator", "Iconic pose estimator (thesis ch. 3): scans + odometry [+ map] -> POSE_IPE.", argc,
+      argv, [&](minenav::ConfigSchema& s) { DeclareOptions(s, options); },
+      [&](minenav::NodeRuntime& runtime) { return Run(runtime, options); });
 }

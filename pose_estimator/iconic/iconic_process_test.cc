@@ -7,6 +7,7 @@
 #include <random>
 
 #include "common/angle.h"
+#include "common/config_testing.h"
 #include "common/file_io.h"
 #include "common/node/conversions.h"
 #include "common/node/event_log.h"
@@ -154,6 +155,26 @@ TEST(IconicProcessTest, ScansThatMatchNothingAreReportedNotFatal) {
     EXPECT_NE(e.msg.status.find("points within"), std::string::npos) << e.msg.status;
   }
   EXPECT_EQ(LoadPosesCsv(dir / "est.csv").size(), 6u);  // initial estimates, one per scan
+}
+
+// Issue 12: the estimator's options nested (match.*, correspondence.*, ...); the flat flags
+// scripts and tests have always used set the nested keys.
+TEST(IconicProcessTest, TheFlatFlagsOfBeforeSetTheNestedKeys) {
+  testing::TempDir dir("minenav_ipe_process_test");
+  const std::vector<FlagAndConfigLine> flags = {
+      {"initial-threshold", "match.initial_threshold = 1.5"}, {"min-threshold", "match.min_threshold = 0.2"},
+      {"epsilon-translation", "match.epsilon_translation = 0.001"},
+      {"epsilon-rotation", "match.epsilon_rotation = 0.0002"}, {"max-iterations", "match.max_iterations = 40"},
+      {"min-correspondences", "match.min_correspondences = 12"}, {"loss", "match.loss = cauchy"},
+      {"loss-scale", "match.loss_scale = 0.2"}, {"reject-open-ends", "match.reject_open_ends = false"},
+      {"method", "correspondence.method = brute"}, {"cell-size", "correspondence.cell_size = 0.05"},
+      {"break-distance", "partial.break_distance = 0.6"}, {"fit-segment-length", "fit.segment_length = 0.4"},
+      {"max-pair-distance", "simultaneous.max_pair_distance = 30"},
+      {"point-stride", "simultaneous.point_stride = 2"},
+      {"every-overlapping-scan", "simultaneous.every_overlapping_scan = false"}};
+  const RunResult r = Ipe(PrintConfigArgs(flags), dir);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  ExpectConfigLines(r.output, flags);
 }
 
 }  // namespace

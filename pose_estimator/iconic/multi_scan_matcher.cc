@@ -9,6 +9,8 @@
 #include <memory>
 #include <sstream>
 
+#include "common/config.h"
+
 #include "pose_estimator/iconic/iconic_residual.h"
 #include "pose_estimator/iconic/lookup_table_correspondence.h"
 #include "pose_estimator/iconic/scan_set_map.h"
@@ -280,6 +282,34 @@ MultiScanResult MatchScansSimultaneously(const std::vector<MultiScanInput>& scan
   result.converged = true;
   result.status = "ok";
   return result;
+}
+
+void DeclareMultiScanParameters(OptionScope scope, const MultiScanParameters& p) {
+  scope.AddDouble("epsilon_translation", p.epsilon_translation, "m",
+                  "converged when no pose moves more: looser than one scan's, since points hop between "
+                  "overlapping scans' polylines and the step jitters at ~0.3 mm (1 mm)",
+                  1e-9, 1.0);
+  scope.AddDouble("epsilon_rotation", p.epsilon_rotation, "rad",
+                  "converged when no heading moves more (1e-4 rad, for the same reason)", 1e-12, 1.0);
+  scope.AddDouble("max_pair_distance", p.max_pair_distance, "m",
+                  "scans whose initial positions are farther apart are never paired: beyond twice the useful "
+                  "range two scans cannot overlap (60 m)",
+                  0.0, 1e6);
+  scope.AddBool("every_overlapping_scan", p.every_overlapping_scan,
+                "a residual for every other scan with a segment within the threshold (A.3) rather than only for "
+                "the nearest: picking the nearest of several noisy polylines biases each link by ~1 cm");
+  scope.AddInt("point_stride", p.point_stride, "every k-th point of a scan is a query (1 = all)", 1, 1000);
+}
+
+void DeclareOptions(OptionScope scope, MultiScanOptions& o) {
+  DeclareOptions(scope.Nested("match"), o.match);
+  DeclareMultiScanParameters(scope, {&o.epsilon_translation, &o.epsilon_rotation, &o.max_pair_distance,
+                                     &o.every_overlapping_scan, &o.point_stride});
+  DeclareOptions(scope.Nested("partial"), o.partial);
+  scope.AddDouble("cell_size", &o.cell_size, "m",
+                  "lookup table cell of each scan's table: raw scan segments are a few cm long, and the automatic "
+                  "(0, finer) size makes queries faster but builds much slower (0.1 m)",
+                  0.0, 10.0);
 }
 
 }  // namespace minenav

@@ -43,6 +43,21 @@ struct MultiScanOptions {
   int point_stride = 1;
 };
 
+class OptionScope;
+// Declares every field of MultiScanOptions under `scope`; match and partial nest.
+void DeclareOptions(OptionScope scope, MultiScanOptions& o);
+// The adjustment's own parameters (not match, partial or the table's cell) wherever they are
+// kept: in MultiScanOptions, and in IconicEstimatorOptions, which hands its copies on.
+// Declared in one place so that both say the same.
+struct MultiScanParameters {
+  double* epsilon_translation;
+  double* epsilon_rotation;
+  double* max_pair_distance;
+  bool* every_overlapping_scan;
+  int* point_stride;
+};
+void DeclareMultiScanParameters(OptionScope scope, const MultiScanParameters& p);
+
 struct MultiScanInput {
   std::vector<Eigen::Vector2d> points;  // vehicle frame, in scan order
   Pose2 initial;                        // map frame

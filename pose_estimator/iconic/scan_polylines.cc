@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "common/config.h"
 #include "common/scan_split.h"
 
 namespace minenav {
@@ -96,6 +97,22 @@ std::vector<Segment> TransformSegments(const Pose2& pose, const std::vector<Segm
   out.reserve(segments.size());
   for (const Segment& s : segments) out.emplace_back(pose * s.a, pose * s.b);
   return out;
+}
+
+void DeclareOptions(OptionScope scope, PartialScanOptions& o) {
+  scope.AddDouble("break_distance", &o.break_distance, "m",
+                  "consecutive points farther apart start a new partial scan: 0.5 m is well above twice the range "
+                  "noise (3.3) and below the gaps occlusions leave",
+                  0.01, 100.0);
+  scope.AddInt("min_points", &o.min_points,
+               "partial scans with fewer points are dropped as clutter or mixed pixels (3)", 1, 1000000);
+}
+
+void DeclareOptions(OptionScope scope, PolylineFitOptions& o) {
+  scope.AddDouble("segment_length", &o.segment_length, "m",
+                  "target segment length of the polylines fit to a scan (scan-map, 3.2.1): 0.5 m averages the "
+                  "range noise of about ten points out at 5 m range",
+                  0.05, 100.0);
 }
 
 }  // namespace minenav

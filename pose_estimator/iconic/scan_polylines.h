@@ -34,6 +34,11 @@ struct PolylineFitOptions {
   double segment_length = 0.5;
 };
 
+class OptionScope;
+// Declare every field of PartialScanOptions / PolylineFitOptions under `scope`.
+void DeclareOptions(OptionScope scope, PartialScanOptions& o);
+void DeclareOptions(OptionScope scope, PolylineFitOptions& o);
+
 // Fits polylines to partial scans: each is cut into runs of about segment_length, a total
 // least-squares line is fit to each run, and neighbouring runs meet at the mean of their
 // lines' projections of the shared point. Averages range noise out of the map.

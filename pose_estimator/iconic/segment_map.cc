@@ -5,6 +5,8 @@
 #include <sstream>
 #include <tuple>
 
+#include "common/config.h"
+
 namespace minenav {
 
 namespace {
@@ -69,6 +71,17 @@ SegmentMap PrepareSegmentMap(const std::vector<Segment>& raw, const SegmentMapOp
     map.problem = why.str();
   }
   return map;
+}
+
+void DeclareOptions(OptionScope scope, SegmentMapOptions& o) {
+  scope.AddDouble("min_segment_length", &o.min_segment_length, "m",
+                  "map segments shorter than this are dropped before matching (1 um: only degenerate ones, whose "
+                  "zero length would divide by zero)",
+                  0.0, 10.0);
+  scope.AddDouble("duplicate_tolerance", &o.duplicate_tolerance, "m",
+                  "segments whose endpoints coincide within this (either direction) are one: a doubled wall would "
+                  "be two equally near candidates (1 nm: exact copies only)",
+                  0.0, 1.0);
 }
 
 }  // namespace minenav

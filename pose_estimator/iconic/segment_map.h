@@ -17,6 +17,10 @@ struct SegmentMapOptions {
   double duplicate_tolerance = 1e-9;
 };
 
+class OptionScope;
+// Declares every field of SegmentMapOptions under `scope` (unit, meaning, range).
+void DeclareOptions(OptionScope scope, SegmentMapOptions& o);
+
 struct SegmentMap {
   std::vector<Segment> segments;  // the cleaned segments
   int dropped_nonfinite = 0;
