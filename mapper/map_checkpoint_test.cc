@@ -13,18 +13,9 @@ namespace minenav::mapper {
 namespace {
 
 using testing::MakeScan;
+using testing::NoisySmallRoomScan;
 using testing::ScanSpec;
 using testing::SmallRoomWorld;
-
-LadarScan NoisyScan(const Pose2& truth, unsigned seed, int64_t utime) {
-  ScanSpec spec;
-  spec.num_points = 720;
-  spec.range_sigma = 0.02;
-  spec.seed = seed;
-  LadarScan scan = MakeScan(SmallRoomWorld(), truth, spec);
-  scan.utime = utime;
-  return scan;
-}
 
 const std::vector<Pose2> kDrive = {{3, 9, 0.3},   {4.5, 9.1, 0.25}, {5.0, 9.1, 0.2}, {6.5, 9.2, 0.0},
                                    {9, 9.5, -0.5}, {13, 9, 0.5},     {17, 9, 2.0},   {17.5, 2, 1.0}};
@@ -93,7 +84,7 @@ class MapCheckpointTest : public ::testing::Test {
     ASSERT_FALSE(session_.AddScan(far, Pose2(102, 101, 0)).accepted());
   }
   static void Add(MappingSession& s, size_t k) {
-    const ScanResult r = s.AddScan(NoisyScan(kDrive[k], static_cast<unsigned>(k + 1), static_cast<int64_t>(k + 1) * 1000),
+    const ScanResult r = s.AddScan(NoisySmallRoomScan(kDrive[k], static_cast<unsigned>(k + 1), static_cast<int64_t>(k + 1) * 1000),
                                    Odometry(kDrive[k]));
     ASSERT_TRUE(r.accepted()) << k << ": " << r.status;
   }

@@ -13,19 +13,9 @@ namespace {
 
 using testing::DriftingOdometry;
 using testing::MakeScan;
+using testing::NoisySmallRoomScan;
 using testing::ScanSpec;
 using testing::SmallRoomWorld;
-
-LadarScan NoisyScan(const Pose2& truth, unsigned seed, int64_t utime) {
-  ScanSpec spec;
-  spec.num_points = 720;
-  spec.range_sigma = 0.02;
-  spec.seed = seed;
-  LadarScan scan = MakeScan(SmallRoomWorld(), truth, spec);
-  scan.utime = utime;
-  scan.scan_id = utime / 1000;
-  return scan;
-}
 
 const std::vector<Pose2> kStations = {{3, 9, 0.3},      {9, 9.5, -0.5},   {17, 9, 2.0},
                                       {17.5, 2, 1.0},   {9.5, 1.5, -2.5}, {2.5, 2, 0.8}};
@@ -62,7 +52,7 @@ TEST(MappingSessionTest, DefaultsInsertEveryScanChainingOdometry) {
   ContourMapper reference;
   std::optional<std::pair<Pose2, Pose2>> last;
   for (size_t k = 0; k < kStations.size(); ++k) {
-    const LadarScan scan = NoisyScan(kStations[k], static_cast<unsigned>(k + 1), 1'000'000 * static_cast<int64_t>(k + 1));
+    const LadarScan scan = NoisySmallRoomScan(kStations[k], static_cast<unsigned>(k + 1), 1'000'000 * static_cast<int64_t>(k + 1));
     const ScanResult r = session.AddScan(scan, odo[k]);
     ASSERT_EQ(r.outcome, ScanOutcome::kInserted) << "scan " << k << ": " << r.status;
     EXPECT_EQ(r.scan_index, static_cast<int>(k));
@@ -97,7 +87,7 @@ TEST(MappingSessionTest, InsertsOnlyAfterEnoughMotionAndTracksTheRest) {
   Pose2 last_inserted;
   int inserted = 0, tracked = 0;
   for (size_t k = 0; k < truth.size(); ++k) {
-    const ScanResult r = session.AddScan(NoisyScan(truth[k], static_cast<unsigned>(k + 1), static_cast<int64_t>(k + 1)), odo[k]);
+    const ScanResult r = session.AddScan(NoisySmallRoomScan(truth[k], static_cast<unsigned>(k + 1), static_cast<int64_t>(k + 1)), odo[k]);
     ASSERT_TRUE(r.accepted()) << "scan " << k << ": " << r.status;
     if (r.outcome == ScanOutcome::kInserted) {
       ++inserted;
@@ -127,7 +117,7 @@ TEST(MappingSessionTest, RefinesEveryNInsertsAndKeepsTheAnchorOnTheRefinedPose) 
   o.mapper.refinement.max_rounds = 2;
   MappingSession session(o);
   for (size_t k = 0; k < 4; ++k) {
-    const ScanResult r = session.AddScan(NoisyScan(kStations[k], static_cast<unsigned>(k + 1), static_cast<int64_t>(k)), odo[k]);
+    const ScanResult r = session.AddScan(NoisySmallRoomScan(kStations[k], static_cast<unsigned>(k + 1), static_cast<int64_t>(k)), odo[k]);
     ASSERT_EQ(r.outcome, ScanOutcome::kInserted) << r.status;
     EXPECT_EQ(r.refined, k % 2 == 1) << k;
     if (r.refined) {
@@ -157,7 +147,7 @@ TEST(MappingSessionTest, AStoppedPeriodicRefinementLeavesTheScanInsertedAndStill
   MappingSession session(o);
   for (size_t k = 0; k < 3; ++k) {
     stop = k == 2;  // the third insert triggers the refinement, and the stop is requested
-    const ScanResult r = session.AddScan(NoisyScan(kStations[k], static_cast<unsigned>(k + 1), static_cast<int64_t>(k)), odo[k]);
+    const ScanResult r = session.AddScan(NoisySmallRoomScan(kStations[k], static_cast<unsigned>(k + 1), static_cast<int64_t>(k)), odo[k]);
     ASSERT_EQ(r.outcome, ScanOutcome::kInserted) << r.status;
     EXPECT_EQ(r.refined, k == 2);
     if (k == 2) {
@@ -178,7 +168,7 @@ TEST(MappingSessionTest, RefusesBadScansLeavesTheMapAndGoesOn) {
   const std::vector<Pose2> odo = DriftingOdometry(kStations);
   MappingSession session;
   for (size_t k = 0; k < 3; ++k)
-    ASSERT_TRUE(session.AddScan(NoisyScan(kStations[k], static_cast<unsigned>(k + 1), static_cast<int64_t>(k)), odo[k])
+    ASSERT_TRUE(session.AddScan(NoisySmallRoomScan(kStations[k], static_cast<unsigned>(k + 1), static_cast<int64_t>(k)), odo[k])
                     .accepted());
   const ContourMap before = session.map();
   const MappingSessionState state_before = session.state();
@@ -197,27 +187,27 @@ TEST(MappingSessionTest, RefusesBadScansLeavesTheMapAndGoesOn) {
   EXPECT_NE(r.status.find("overlap"), std::string::npos) << r.status;
   unchanged();
   // A wildly wrong initial estimate: odometry 120 degrees and metres off.
-  r = session.AddScan(NoisyScan(Pose2(10, 6, 0), 20, 11), odo[2] * Pose2(-6, 3, 2.1));
+  r = session.AddScan(NoisySmallRoomScan(Pose2(10, 6, 0), 20, 11), odo[2] * Pose2(-6, 3, 2.1));
   EXPECT_EQ(r.outcome, ScanOutcome::kRefused) << r.status;
   unchanged();
   // All points out of range.
-  LadarScan blank = NoisyScan(kStations[3], 21, 12);
+  LadarScan blank = NoisySmallRoomScan(kStations[3], 21, 12);
   for (float& v : blank.ranges) v = 1000.0f;
   r = session.AddScan(blank, odo[3]);
   EXPECT_EQ(r.outcome, ScanOutcome::kRefused);
   EXPECT_NE(r.status.find("too few usable points"), std::string::npos) << r.status;
   unchanged();
   // A malformed scan and a non-finite odometry pose.
-  LadarScan bad = NoisyScan(kStations[3], 22, 13);
+  LadarScan bad = NoisySmallRoomScan(kStations[3], 22, 13);
   bad.angle_step = 0;
   r = session.AddScan(bad, odo[3]);
   EXPECT_NE(r.status.find("invalid scan"), std::string::npos) << r.status;
-  r = session.AddScan(NoisyScan(kStations[3], 23, 14), Pose2(std::nan(""), 0, 0));
+  r = session.AddScan(NoisySmallRoomScan(kStations[3], 23, 14), Pose2(std::nan(""), 0, 0));
   EXPECT_NE(r.status.find("not finite"), std::string::npos) << r.status;
   unchanged();
   EXPECT_EQ(session.state().refused, 5);
   // A scan with a hole still goes in; the session goes on.
-  LadarScan holey = NoisyScan(kStations[3], 24, 15);
+  LadarScan holey = NoisySmallRoomScan(kStations[3], 24, 15);
   for (size_t i = 100; i < 300; ++i) holey.ranges[i] = std::nanf("");
   r = session.AddScan(holey, odo[3]);
   EXPECT_EQ(r.outcome, ScanOutcome::kInserted) << r.status;
@@ -230,7 +220,7 @@ TEST(MappingSessionTest, StartsFromALoadedMap) {
   MappingSession session({}, testing::SmallRoomContours());
   const int before = session.map().NumContours();
   const Pose2 truth(9, 9.5, -0.5);
-  const ScanResult r = session.AddScan(NoisyScan(truth, 3, 1), Pose2(9.25, 9.3, -0.45));
+  const ScanResult r = session.AddScan(NoisySmallRoomScan(truth, 3, 1), Pose2(9.25, 9.3, -0.45));
   ASSERT_EQ(r.outcome, ScanOutcome::kInserted) << r.status;
   EXPECT_LT(TranslationDistance(r.pose, truth), 0.02);
   EXPECT_LT(HeadingDistance(r.pose, truth), DegToRad(0.2));

@@ -32,8 +32,7 @@ if(EXISTS "${CMAKE_SOURCE_DIR}/tests/child_process.cc")
     SOURCES ${CMAKE_CURRENT_LIST_DIR}/contour_mapper_process_test.cc "${CMAKE_SOURCE_DIR}/tests/child_process.cc"
     LIBS minenav_mapper minenav_map_evaluation minenav_common)
   target_compile_definitions(contour_mapper_process_test PRIVATE
-    MINENAV_CONTOUR_MAPPER_BIN="$<TARGET_FILE:contour_mapper>" MINENAV_LOG_TOOL_BIN="$<TARGET_FILE:log_tool>"
-    MINENAV_SOURCE_DIR="${CMAKE_SOURCE_DIR}")
+    MINENAV_CONTOUR_MAPPER_BIN="$<TARGET_FILE:contour_mapper>" MINENAV_LOG_TOOL_BIN="$<TARGET_FILE:log_tool>")
   add_dependencies(contour_mapper_process_test contour_mapper log_tool)
 endif()
 

@@ -62,6 +62,19 @@ inline std::vector<Segment> SmallRoomWorld() {
   return w;
 }
 
+// A 720-point scan of SmallRoomWorld at `truth` with 2 cm range noise, stamped `utime` (us)
+// and scan_id utime / 1000: the scans of the mapping-session and checkpoint tests.
+inline LadarScan NoisySmallRoomScan(const Pose2& truth, unsigned seed, int64_t utime) {
+  ScanSpec spec;
+  spec.num_points = 720;
+  spec.range_sigma = 0.02;
+  spec.seed = seed;
+  LadarScan scan = MakeScan(SmallRoomWorld(), truth, spec);
+  scan.utime = utime;
+  scan.scan_id = utime / 1000;
+  return scan;
+}
+
 // A loop: corridors 5 m wide around a 12 x 6 m block of pillars, with crib blocks along
 // the outer walls so no corridor is featureless within a short range.
 inline std::vector<Segment> LoopWorld() {

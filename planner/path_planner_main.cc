@@ -15,6 +15,7 @@
 #include <string>
 
 #include "common/config.h"
+#include "common/pose_text.h"
 #include "common/file_io.h"
 #include "common/log.h"
 #include "planner/grid_astar.h"
@@ -46,19 +47,7 @@ Footprint FootprintFromFlag(const std::string& text) {
 
 Pose2 PoseFromFlag(const std::string& text, const std::string& what) {
   if (text.empty()) throw UsageError(what + " x,y,theta is required with --map");
-  std::vector<double> v;
-  for (size_t begin = 0, i = 0; i < 3; ++i) {
-    const size_t end = text.find(',', begin);
-    const std::string part = text.substr(begin, end == std::string::npos ? std::string::npos : end - begin);
-    v.push_back(ParseNumber(part, what, i == 2));
-    if (end == std::string::npos) {
-      if (i != 2) throw UsageError(what + " needs x,y,theta, got '" + text + "'");
-      break;
-    }
-    if (i == 2) throw UsageError(what + " needs x,y,theta, got '" + text + "'");
-    begin = end + 1;
-  }
-  return {v[0], v[1], v[2]};
+  return ParsePoseText(text, what);
 }
 
 std::string PathCsv(const PlannedPath& path) {

@@ -67,6 +67,15 @@ std::optional<int> ChildProcess::Wait(double timeout_s) {
 
 bool ChildProcess::Running() { return pid_ > 0 && !Wait(0.0).has_value(); }
 
+ProgramRun RunProgram(const std::string& program, const std::vector<std::string>& args,
+                      const std::string& output_path, double timeout_s) {
+  std::vector<std::string> argv = {program};
+  argv.insert(argv.end(), args.begin(), args.end());
+  ChildProcess child(argv, output_path);
+  const std::optional<int> code = child.Wait(timeout_s);
+  return {code.value_or(-1), ReadTextFile(output_path)};
+}
+
 std::string ReadTextFile(const std::string& path) {
   std::ifstream in(path);
   std::stringstream ss;

@@ -33,6 +33,17 @@ class ChildProcess {
   std::optional<int> exit_code_;
 };
 
+// A program run to its end: its exit code (-1 when it outlived the timeout and was killed)
+// and everything it printed.
+struct ProgramRun {
+  int exit_code = -1;
+  std::string output;
+};
+// Runs `program` with `args`, its stdout and stderr into `output_path`, for at most
+// timeout_s seconds.
+ProgramRun RunProgram(const std::string& program, const std::vector<std::string>& args,
+                      const std::string& output_path, double timeout_s);
+
 // The whole file as a string ("" if it cannot be read).
 std::string ReadTextFile(const std::string& path);
 // Lines of `text` containing `needle`.

@@ -20,6 +20,7 @@
 #include "common/log.h"
 #include "common/node/bus.h"
 #include "common/node/conversions.h"
+#include "common/node/map_updates.h"
 #include "common/node/node_runtime.h"
 #include "common/node/scan_estimation_node.h"
 #include "minenav/line_map_t.hpp"
@@ -67,14 +68,13 @@ int Run(NodeRuntime& runtime, const ProcessOptions& p) {
                        << estimator->map().vertices.size() << " vertices";
   }
   runtime.Start();
+  std::optional<MapUpdates> map_updates;  // outlives the handlers below
   if (p.map.empty()) {
-    Subscribe<line_map_t>(runtime.bus(), p.map_channel, [&](const line_map_t& m) {
-      std::vector<Segment> segments = SegmentsFromLcm(m);
-      if (estimator && SameSegments(estimator->map().segments, segments)) return;
-      estimator = std::make_unique<FeaturePoseEstimator>(segments, eo);
-      MINENAV_LOG(kInfo) << "map from " << p.map_channel << " '" << m.name << "' version " << m.version << ": "
-                         << segments.size() << " segments";
-    });
+    map_updates.emplace(runtime.bus(), p.map_channel, "",
+                        [&](const std::vector<Segment>& segments, const std::string& what) {
+                          estimator = std::make_unique<FeaturePoseEstimator>(segments, eo);
+                          MINENAV_LOG(kInfo) << "map from " << what << ": " << segments.size() << " segments";
+                        });
   }
   ScanEstimationNode node(runtime, p.estimation, "fpe",
                           [&](const LadarScan& scan, const Pose2& initial, std::string* why) -> std::optional<MatchResult> {

@@ -20,20 +20,10 @@ namespace minenav {
 namespace {
 
 namespace fs = std::filesystem;
-using minenav::testing::ChildProcess;
 using minenav::testing::ReadTextFile;
 
-struct RunResult {
-  int exit_code = -1;
-  std::string output;
-};
-
-RunResult Fpe(const std::vector<std::string>& args, const testing::TempDir& dir) {
-  std::vector<std::string> argv = {MINENAV_FPE_BIN};
-  argv.insert(argv.end(), args.begin(), args.end());
-  ChildProcess p(argv, dir / "out.txt");
-  const auto code = p.Wait(60.0);
-  return {code.value_or(-1), ReadTextFile(dir / "out.txt")};
+testing::ProgramRun Fpe(const std::vector<std::string>& args, const testing::TempDir& dir) {
+  return testing::RunProgram(MINENAV_FPE_BIN, args, dir / "out.txt", 60.0);
 }
 
 TEST(FeaturePoseEstimatorProcess, BatchOverALogWritesOnePosePerScan) {
@@ -71,7 +61,7 @@ TEST(FeaturePoseEstimatorProcess, BatchOverALogWritesOnePosePerScan) {
     }
     log.Close();
   }
-  const RunResult r = Fpe({"--log", dir / "in.lcm", "--map", dir / "map.json", "--poses-out", dir / "est.csv"}, dir);
+  const testing::ProgramRun r = Fpe({"--log", dir / "in.lcm", "--map", dir / "map.json", "--poses-out", dir / "est.csv"}, dir);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("1 bad"), std::string::npos) << r.output;
   const std::vector<StampedPose> est = LoadPosesCsv(dir / "est.csv");
@@ -93,7 +83,7 @@ TEST(FeaturePoseEstimatorProcess, BatchOverALogWritesOnePosePerScan) {
 
 TEST(FeaturePoseEstimatorProcess, BadFlagsAndFilesExitTwoWithOneLine) {
   testing::TempDir dir("minenav_fpe_process_test");
-  RunResult r = Fpe({"--map", dir / "missing.json", "--log", dir / "missing.lcm"}, dir);
+  testing::ProgramRun r = Fpe({"--map", dir / "missing.json", "--log", dir / "missing.lcm"}, dir);
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("missing.json"), std::string::npos) << r.output;
   r = Fpe({"--poses-out", dir / "x.csv"}, dir);
@@ -117,7 +107,7 @@ TEST(FeaturePoseEstimatorProcess, TheFlatFlagsOfBeforeSetTheNestedKeys) {
       {"bindisterr", "matching.bindisterr = 0.6"},  {"binangerr", "matching.binangerr = 0.1"},
       {"arm-length", "extraction.corner.arm_length = 0.6"}, {"noise-sigma", "extraction.noise_sigma = 0.05"},
       {"point-sigma", "minimization.point_sigma = 0.05"},   {"max-range", "prediction.max_range = 30"}};
-  const RunResult r = Fpe(PrintConfigArgs(flags), dir);
+  const testing::ProgramRun r = Fpe(PrintConfigArgs(flags), dir);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   ExpectConfigLines(r.output, flags);
 }

@@ -25,6 +25,7 @@
 #include "common/node/bus.h"
 #include "common/node/contour_map_conversions.h"
 #include "common/node/conversions.h"
+#include "common/node/map_updates.h"
 #include "common/node/node_runtime.h"
 #include "common/node/scan_estimation_node.h"
 #include "minenav/contour_map_t.hpp"
@@ -71,15 +72,6 @@ void DeclareOptions(ConfigSchema& s, ProcessOptions& p) {
 
 // Contours as segments; a compressed map is inflated and validated first
 // (common/node/contour_map_conversions.h).
-std::vector<Segment> ContourMapSegments(const contour_map_t& m) {
-  std::vector<Segment> out;
-  for (const ContourPolyline& c : ContourMapFromLcm(m).contours) {
-    for (size_t i = 1; i < c.points.size(); ++i) out.emplace_back(c.points[i - 1], c.points[i]);
-    if (c.closed && c.points.size() > 2) out.emplace_back(c.points.back(), c.points.front());
-  }
-  return out;
-}
-
 int Run(NodeRuntime& runtime, const ProcessOptions& p) {
   const IconicEstimatorOptions& eo = p.estimator;
   if (const std::string why = ValidateIconicMatchOptions(eo.match); !why.empty()) throw UsageError(why);
@@ -98,24 +90,16 @@ int Run(NodeRuntime& runtime, const ProcessOptions& p) {
   runtime.Start();
   Bus& bus = runtime.bus();
 
-  int64_t line_version = -1, contour_version = -1;  // outlive the handlers below
+  std::optional<MapUpdates> map_updates;  // outlives the handlers below
   if (eo.mode == IconicMode::kSurveyed && p.map.empty()) {
-    auto set_map = [&](std::vector<Segment> segments, const std::string& what) {
-      auto fresh = std::make_unique<IconicEstimator>(eo);
-      if (const std::string why = fresh->SetMap(segments); !why.empty()) throw InputError(what + ": " + why);
-      estimator = std::move(fresh);
-      MINENAV_LOG(kInfo) << "map from " << what << ": " << estimator->map_size() << " segments";
-    };
-    Subscribe<line_map_t>(bus, p.map_channel, [&, set_map](const line_map_t& m) {
-      if (m.version == line_version) return;
-      set_map(SegmentsFromLcm(m), p.map_channel + " '" + m.name + "' version " + std::to_string(m.version));
-      line_version = m.version;
-    });
-    Subscribe<contour_map_t>(bus, p.contour_channel, [&, set_map](const contour_map_t& m) {
-      if (m.version == contour_version) return;
-      set_map(ContourMapSegments(m), p.contour_channel + " version " + std::to_string(m.version));
-      contour_version = m.version;
-    });
+    map_updates.emplace(bus, p.map_channel, p.contour_channel,
+                        [&](const std::vector<Segment>& segments, const std::string& what) {
+                          auto fresh = std::make_unique<IconicEstimator>(eo);
+                          if (const std::string why = fresh->SetMap(segments); !why.empty())
+                            throw InputError(what + ": " + why);
+                          estimator = std::move(fresh);
+                          MINENAV_LOG(kInfo) << "map from " << what << ": " << estimator->map_size() << " segments";
+                        });
   }
 
   ScanEstimationNode node(runtime, p.estimation, "ipe",

@@ -24,20 +24,10 @@ namespace minenav {
 namespace {
 
 namespace fs = std::filesystem;
-using minenav::testing::ChildProcess;
 using minenav::testing::ReadTextFile;
 
-struct RunResult {
-  int exit_code = -1;
-  std::string output;
-};
-
-RunResult Ipe(const std::vector<std::string>& args, const testing::TempDir& dir) {
-  std::vector<std::string> argv = {MINENAV_IPE_BIN};
-  argv.insert(argv.end(), args.begin(), args.end());
-  ChildProcess p(argv, dir / "out.txt");
-  const auto code = p.Wait(120.0);
-  return {code.value_or(-1), ReadTextFile(dir / "out.txt")};
+testing::ProgramRun Ipe(const std::vector<std::string>& args, const testing::TempDir& dir) {
+  return testing::RunProgram(MINENAV_IPE_BIN, args, dir / "out.txt", 120.0);
 }
 
 // A survey of the test room: 6 stations a couple of metres apart, odometry with the
@@ -92,7 +82,7 @@ TEST(IconicProcessTest, EveryModeWritesOnePosePerScan) {
     std::vector<std::string> args = {"--log", dir / "in.lcm", "--mode", mode, "--poses-out", dir / "est.csv",
                                      "--min-threshold", "0.05", "--log-out", dir / "out.lcm"};
     if (mode == "surveyed") args.insert(args.end(), {"--map", dir / "map.json"});
-    const RunResult r = Ipe(args, dir);
+    const testing::ProgramRun r = Ipe(args, dir);
     ASSERT_EQ(r.exit_code, 0) << mode << ": " << r.output;
     SCOPED_TRACE(r.output);
     ExpectPosesNearTruth(dir / "est.csv", truth, 0.03, mode);
@@ -113,7 +103,7 @@ TEST(IconicProcessTest, EveryModeWritesOnePosePerScan) {
 TEST(IconicProcessTest, MapFromTheLineMapChannel) {
   testing::TempDir dir("minenav_ipe_process_test");
   const auto truth = WriteSurveyLog(dir / "in.lcm", true);
-  const RunResult r = Ipe({"--log", dir / "in.lcm", "--poses-out", dir / "est.csv", "--min-threshold", "0.05"}, dir);
+  const testing::ProgramRun r = Ipe({"--log", dir / "in.lcm", "--poses-out", dir / "est.csv", "--min-threshold", "0.05"}, dir);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   ExpectPosesNearTruth(dir / "est.csv", truth, 0.03, "LINE_MAP");
 }
@@ -121,7 +111,7 @@ TEST(IconicProcessTest, MapFromTheLineMapChannel) {
 TEST(IconicProcessTest, BadFlagsAndFilesExitWithTwoAndOneLine) {
   testing::TempDir dir("minenav_ipe_process_test");
   WriteSurveyLog(dir / "in.lcm", false);
-  RunResult r = Ipe({"--log", dir / "in.lcm", "--mode", "icp"}, dir);
+  testing::ProgramRun r = Ipe({"--log", dir / "in.lcm", "--mode", "icp"}, dir);
   EXPECT_EQ(r.exit_code, 2) << r.output;
   r = Ipe({"--log", dir / "in.lcm", "--map", dir / "missing.json"}, dir);
   EXPECT_EQ(r.exit_code, 2) << r.output;
@@ -144,7 +134,7 @@ TEST(IconicProcessTest, ScansThatMatchNothingAreReportedNotFatal) {
   WriteSurveyLog(dir / "in.lcm", false);
   // A map 100 m away from where the scans were taken.
   SaveSegmentsJson(dir / "far.json", {{100, 100, 110, 100}, {110, 100, 110, 110}, {110, 110, 100, 110}});
-  const RunResult r = Ipe({"--log", dir / "in.lcm", "--map", dir / "far.json", "--poses-out", dir / "est.csv",
+  const testing::ProgramRun r = Ipe({"--log", dir / "in.lcm", "--map", dir / "far.json", "--poses-out", dir / "est.csv",
                            "--log-out", dir / "out.lcm"},
                           dir);
   ASSERT_EQ(r.exit_code, 0) << r.output;
@@ -172,7 +162,7 @@ TEST(IconicProcessTest, TheFlatFlagsOfBeforeSetTheNestedKeys) {
       {"max-pair-distance", "simultaneous.max_pair_distance = 30"},
       {"point-stride", "simultaneous.point_stride = 2"},
       {"every-overlapping-scan", "simultaneous.every_overlapping_scan = false"}};
-  const RunResult r = Ipe(PrintConfigArgs(flags), dir);
+  const testing::ProgramRun r = Ipe(PrintConfigArgs(flags), dir);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   ExpectConfigLines(r.output, flags);
 }
