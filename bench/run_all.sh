@@ -43,6 +43,7 @@ benches=(
   "mapper_loop_bench|"
   "mapper_scale_bench|"
   "mapper_dynamic_bench|"
+  "planner_bench|"
 )
 if [[ $carmen -eq 1 ]]; then
   benches+=("mapper_carmen_bench_intel|--only intel" "mapper_carmen_bench_fr079|--only fr079")
