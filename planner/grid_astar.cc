@@ -83,8 +83,7 @@ GridSearchResult GridAStar::Plan(GridCell start, GridCell goal, const SearchLimi
     const SearchStatus limit = CheckLimits(limits, result.expansions, result.states);
     if (limit != SearchStatus::kFound) {
       result.status = limit;
-      result.reason = "stopped by " + ToString(limit) + " after " + std::to_string(result.expansions) +
-                      " expansions and " + std::to_string(result.states) + " states";
+      result.reason = LimitReason(limit, result.expansions, result.states);
       return result;
     }
     closed_[e.cell] = search_;

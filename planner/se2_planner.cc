@@ -355,8 +355,7 @@ Se2PlanResult Se2Planner::Plan(const Pose2& start_in, const Pose2& goal_in, cons
     const SearchStatus limit = CheckLimits(limits, result.expansions, static_cast<int64_t>(nodes.size()));
     if (limit != SearchStatus::kFound) {
       result.states = static_cast<int64_t>(nodes.size());
-      return finish(limit, "stopped by " + ToString(limit) + " after " + std::to_string(result.expansions) +
-                               " expansions and " + std::to_string(nodes.size()) + " states");
+      return finish(limit, LimitReason(limit, result.expansions, result.states));
     }
     current.closed = true;
     ++result.expansions;

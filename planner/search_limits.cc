@@ -4,6 +4,11 @@
 
 namespace minenav {
 
+std::string LimitReason(SearchStatus limit, int64_t expansions, int64_t states) {
+  const std::string what = limit == SearchStatus::kStopped ? "stopped on request" : "stopped by " + ToString(limit);
+  return what + " after " + std::to_string(expansions) + " expansions and " + std::to_string(states) + " states";
+}
+
 std::string ToString(SearchStatus status) {
   switch (status) {
     case SearchStatus::kFound: return "found";

@@ -36,6 +36,8 @@ enum class SearchStatus {
 
 // "found", "no_path", "invalid_request", "expansion_limit", "memory_limit", "stopped".
 std::string ToString(SearchStatus status);
+// The one line a search gives when `limit` (a bound, or a stop request) ended it.
+std::string LimitReason(SearchStatus limit, int64_t expansions, int64_t states);
 
 // The limit that is reached after `expansions` expansions with `states` stored states, or
 // kFound when none is (polls stop_requested every kStopPollInterval expansions).
