@@ -54,7 +54,7 @@ TEST(LcmTypesTest, FingerprintsArePinned) {
       {"line_segment_t", -6938642210381800720LL, minenav::line_segment_t::getHash()},
       {"mission_status_t", 7947702355671879429LL, minenav::mission_status_t::getHash()},
       {"odometry_t", 1879946957910835790LL, minenav::odometry_t::getHash()},
-      {"path_request_t", -1493634234110231787LL, minenav::path_request_t::getHash()},
+      {"path_request_t", -9076065102670345754LL, minenav::path_request_t::getHash()},  // issue 13: allow_unknown
       {"path_segment_t", 3440628198772269525LL, minenav::path_segment_t::getHash()},
       {"path_t", -1701602323202045816LL, minenav::path_t::getHash()},
       {"pose2d_t", -1647330039494046938LL, minenav::pose2d_t::getHash()},
