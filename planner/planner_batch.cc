@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -12,14 +13,13 @@
 #include "common/file_io.h"
 #include "common/log.h"
 #include "common/pose_text.h"
+#include "mapper/contour_map_io.h"
 #include "planner/grid_astar.h"
 #include "planner/movingai.h"
 #include "render/svg_render.h"
 
 namespace minenav {
-namespace {
 
-// "W,L" (a rectangle W wide and L long, centred on the pose, x along L) or a JSON file.
 Footprint FootprintFromFlag(const std::string& text) {
   if (!std::filesystem::exists(text)) {
     const std::vector<double> wl = ParseNumberList(text, "--footprint", 2);
@@ -28,6 +28,8 @@ Footprint FootprintFromFlag(const std::string& text) {
   }
   return ParseFootprintJson(ReadFile(text), text);
 }
+
+namespace {
 
 Pose2 PoseFromFlag(const std::string& text, const std::string& what) {
   if (text.empty()) throw UsageError(what + " x,y,theta is required with --map");
@@ -47,10 +49,36 @@ std::string PathCsv(const PlannedPath& path) {
 
 // The map, the path through every piece (arcs drawn as chords every 0.5 m) and the footprint
 // every 2 m along it.
-std::string PathSvg(const Se2Planner& planner, const PlannedPath& path, const std::string& title) {
+std::string PathSvg(const Se2Planner& planner, const PlannedPath& path, const std::string& title,
+                    const ContourFreeSpace* space, const FreeSpaceOptions& free_space) {
   SvgScene scene;
   scene.title = title;
-  scene.lines.push_back({"map", "#333333", 1.5, planner.map(), {}});
+  if (space != nullptr) {
+    // The known free space: runs of 0.5 m cells along x whose centres KnownFreeSpace holds.
+    const KnownFreeSpace known(*space, free_space);
+    SvgArea cells{"known free space", "#2ca02c", 0.2, {}};
+    constexpr double kCell = 0.5;
+    const Eigen::Vector2d lo = planner.map_min(), hi = planner.map_max();
+    for (double y = lo.y(); y < hi.y(); y += kCell) {
+      double run_start = 0.0;
+      bool in_run = false;
+      for (double x = lo.x(); x <= hi.x() + kCell; x += kCell) {
+        const bool in = x < hi.x() && known.Contains({x + kCell / 2, y + kCell / 2});
+        if (in && !in_run) run_start = x;
+        if (!in && in_run)
+          cells.polygons.push_back({{run_start, y}, {x, y}, {x, y + kCell}, {run_start, y + kCell}});
+        in_run = in;
+      }
+    }
+    scene.areas.push_back(cells);
+    scene.lines.push_back({"walls (contours)", "#333333", 1.5, space->walls, {}});
+    // Frontiers dashed: one two-pose dashed trajectory each, the first in the legend.
+    for (const Segment& fr : space->frontiers)
+      scene.trajectories.push_back({scene.trajectories.empty() ? "frontiers (end of what the ladar saw)" : "",
+                                    "#d62728", 1.5, true, false, {Pose2(fr.a.x(), fr.a.y(), 0.0), Pose2(fr.b.x(), fr.b.y(), 0.0)}});
+  } else {
+    scene.lines.push_back({"map", "#333333", 1.5, planner.map(), {}});
+  }
   SvgTrajectory traj{"path", "#1f77b4", 2.0, false, false, {path.start}};
   SvgLineLayer footprints{"footprint", "#ff7f0e", 0.8, {}, {}};
   Pose2 from = path.start;
@@ -79,12 +107,42 @@ std::string PathSvg(const Se2Planner& planner, const PlannedPath& path, const st
   return RenderSvg(scene);
 }
 
-int RunMapMode(const PlannerBatchFlags& flags, const Se2PlannerOptions& options, const SearchLimits& limits) {
-  if (flags.path_out.empty()) throw UsageError("--map needs --path-out FILE");
-  CheckOutputIsNotInput("--path-out", flags.path_out, {flags.map, flags.footprint});
-  CheckOutputIsNotInput("--svg-out", flags.svg_out, {flags.map, flags.footprint, flags.path_out});
+int RunMapMode(const PlannerBatchFlags& flags, const Se2PlannerOptions& options, const SearchLimits& limits,
+               const FreeSpaceOptions& free_space) {
+  const bool contours = !flags.contour_map.empty();
+  const std::string mode = contours ? "--contour-map" : "--map";
+  if (contours && !flags.map.empty()) throw UsageError("give --map or --contour-map, not both");
+  if (flags.allow_unknown && !contours) throw UsageError("--allow-unknown needs --contour-map");
+  if (flags.path_out.empty()) throw UsageError(mode + " needs --path-out FILE");
+  const std::string& map_file = contours ? flags.contour_map : flags.map;
+  CheckOutputIsNotInput("--path-out", flags.path_out, {map_file, flags.footprint});
+  CheckOutputIsNotInput("--svg-out", flags.svg_out, {map_file, flags.footprint, flags.path_out});
+  if (const std::string e = ValidateOptions(free_space); !e.empty()) throw UsageError(e);
   const Pose2 start = PoseFromFlag(flags.start, "--start"), goal = PoseFromFlag(flags.goal, "--goal");
-  const Se2Planner planner(LoadSegmentsJson(flags.map), FootprintFromFlag(flags.footprint), options);
+  std::optional<ContourFreeSpace> space;
+  std::vector<Segment> walls;
+  if (contours) {
+    std::vector<mapper::Contour> list;
+    const mapper::ContourMap map = mapper::LoadContourMapJson(flags.contour_map);
+    for (const auto& [id, c] : map.contours()) list.push_back(c);
+    space = MakeContourFreeSpace(list, free_space);
+    walls = space->Boundary(flags.allow_unknown);
+    MINENAV_LOG(kInfo) << flags.contour_map << ": " << list.size() << " contours, " << space->walls.size()
+                       << " wall segments, " << space->frontiers.size() << " frontiers, " << space->unclosed_ends
+                       << " ends left open";
+    if (!flags.allow_unknown) {
+      const KnownFreeSpace known(*space, free_space);
+      for (const auto& [pose, what] : {std::pair{start, "start"}, std::pair{goal, "goal"}})
+        if (!known.Contains(pose.translation())) {
+          MINENAV_LOG(kError) << "no path (invalid_request): " << what << " " << pose
+                              << " is not in the known free space (behind a frontier or unseen; --allow-unknown explores)";
+          return kExitNoPath;
+        }
+    }
+  } else {
+    walls = LoadSegmentsJson(flags.map);
+  }
+  const Se2Planner planner(std::move(walls), FootprintFromFlag(flags.footprint), options);
   const auto t0 = std::chrono::steady_clock::now();
   const Se2PlanResult r = planner.Plan(start, goal, limits);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -98,7 +156,9 @@ int RunMapMode(const PlannerBatchFlags& flags, const Se2PlannerOptions& options,
   summary.precision(4);
   summary << "path " << r.path.Length() << " m, " << r.path.pieces.size() << " pieces, " << r.path.Reversals()
           << " reversals, " << r.expansions << " expansions, " << seconds << " s";
-  if (!flags.svg_out.empty()) WriteFileAtomically(flags.svg_out, PathSvg(planner, r.path, summary.str()));
+  if (!flags.svg_out.empty())
+    WriteFileAtomically(flags.svg_out,
+                        PathSvg(planner, r.path, summary.str(), space ? &*space : nullptr, free_space));
   MINENAV_LOG(kInfo) << summary.str();
   return 0;
 }

@@ -135,6 +135,14 @@ std::string RenderSvg(const SvgScene& scene, const SvgRenderOptions& options) {
   // scan at a bad pose) never run over the legend.
   os << "<clipPath id=\"area\"><rect x=\"" << f.X(b.min_x) << "\" y=\"" << f.Y(b.max_y) << "\" width=\"" << draw_w
      << "\" height=\"" << draw_h << "\"/></clipPath>\n<g clip-path=\"url(#area)\">\n";
+  for (const auto& a : scene.areas) {
+    if (a.polygons.empty()) continue;
+    os << "<path stroke=\"none\" fill=\"" << a.color << "\" fill-opacity=\"" << a.opacity << "\" d=\"";
+    for (const auto& poly : a.polygons)
+      for (size_t i = 0; i < poly.size(); ++i)
+        os << (i ? "L" : "M") << f.X(poly[i].x()) << " " << f.Y(poly[i].y()) << (i + 1 == poly.size() ? "Z" : "");
+    os << "\"/>\n";
+  }
   // Dots as zero-length round-capped strokes: a fraction of the size of one <circle>
   // per point, so a 42-scan survey stays a few megabytes.
   for (const auto& l : scene.points) {
@@ -219,6 +227,13 @@ std::string RenderSvg(const SvgScene& scene, const SvgRenderOptions& options) {
        << Escape(label) << "</text>\n";
     ly += 22.0;
   };
+  for (const auto& a : scene.areas) {
+    if (a.label.empty()) continue;
+    os << "<rect x=\"" << lx << "\" y=\"" << ly - 12 << "\" width=\"30\" height=\"12\" fill=\"" << a.color
+       << "\" fill-opacity=\"" << a.opacity << "\"/><text x=\"" << lx + 40 << "\" y=\"" << ly << "\">"
+       << Escape(a.label) << "</text>\n";
+    ly += 22.0;
+  }
   for (const auto& l : scene.lines)
     if (!l.label.empty()) entry_line(l.label, l.color, false, std::max(l.width_px, 2.0));
   for (const auto& l : scene.points) {

@@ -55,6 +55,14 @@ struct SvgLinks {
   std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> links;
 };
 
+// Filled areas (known free space, ...), drawn under everything else, without outline.
+struct SvgArea {
+  std::string label;
+  std::string color;
+  double opacity = 0.2;
+  std::vector<std::vector<Eigen::Vector2d>> polygons;
+};
+
 struct SvgScene {
   std::string title;
   std::vector<std::string> notes;  // extra lines under the title
@@ -62,6 +70,7 @@ struct SvgScene {
   std::vector<SvgLineLayer> lines;         // then walls and maps over the points
   std::vector<SvgLinks> links;
   std::vector<SvgTrajectory> trajectories; // on top
+  std::vector<SvgArea> areas;              // under everything
 };
 
 struct SvgRenderOptions {

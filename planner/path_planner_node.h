@@ -1,0 +1,120 @@
+#pragma once
+// path_planner live (planner/README.md "Live"): answers PATH_REQUEST with PATH on the
+// contour map the mapper publishes (CONTOUR_MAP), and replans the active path when the map
+// changes under it. The process (path_planner_main.cc) only declares these options and
+// wires the node.
+//
+//   PATH_REQUEST  validated on the node thread (NaN, tolerances, clearance; one line each),
+//                 then planned on the BackgroundWorker (the node loop never waits for a
+//                 search) against the walls of the latest map and, unless the request allows
+//                 unknown space, its frontiers (planner/contour_free_space.h); each search is
+//                 bounded by `deadline` (SearchLimits::stop_requested) and the answer names
+//                 the bound that stopped it.
+//   CONTOUR_MAP   plain or zlib (common/node/contour_map_conversions.h). One Se2Planner per
+//                 (map version, clearance, allow_unknown), so repeated requests to a goal on
+//                 one map reuse its cached heuristic. A new version re-checks the rest of the
+//                 active path (from the latest POSE's closest point on it) with
+//                 Se2Planner::PieceCollides; when blocked the node replans from the latest
+//                 pose to the same goal and publishes a PATH with the same request_id and the
+//                 status "replanned: <why>".
+//   POSE          the vehicle's estimate (pose_estimate_t; converged estimates only).
+//   PATH          path_t: feasible with the motions, or feasible = false and the one-line reason.
+
+#include <atomic>
+#include <chrono>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "common/config.h"
+#include "common/node/background_worker.h"
+#include "common/node/node_runtime.h"
+#include "minenav/contour_map_t.hpp"
+#include "minenav/path_request_t.hpp"
+#include "minenav/path_t.hpp"
+#include "planner/contour_free_space.h"
+#include "planner/footprint.h"
+#include "planner/motion.h"
+#include "planner/search_limits.h"
+#include "planner/se2_planner.h"
+
+namespace minenav {
+
+struct PathPlannerNodeOptions {
+  std::string request_channel = "PATH_REQUEST";
+  std::string map_channel = "CONTOUR_MAP";
+  std::string pose_channel = "POSE";
+  std::string path_channel = "PATH";
+  double deadline = 5.0;            // s of wall time per search (request or replan). Default 5.
+  double default_clearance = 0.1;   // m, used when a request's clearance is 0. Default 0.1.
+  double max_clearance = 2.0;       // m, larger requested clearances are refused. Default 2.
+  double max_tolerance = 5.0;       // m (position) and rad (heading) a request may give. Default 5.
+  double speed = 0.076;             // m/s, the speed limit written on every segment (the miner's cruise). Default 0.076.
+  int queue_capacity = 4;           // --search-queue: searches that may wait for the worker; the oldest is dropped. Default 4.
+  double poll_period = 0.02;        // s between looks at the worker's answers. Default 0.02.
+  Se2PlannerOptions planner;        // planner.clearance is replaced by the request's
+  SearchLimits search;
+  FreeSpaceOptions free_space;
+};
+
+// Every option: channels, deadline, clearances, ..., planner.*, search.*, free_space.*.
+void DeclareOptions(ConfigSchema& schema, PathPlannerNodeOptions& options);
+// "" when usable, else one line.
+std::string ValidateOptions(const PathPlannerNodeOptions& options);
+
+// "" when the request can be planned, else the one-line reason (NaN, tolerances, clearance).
+std::string ValidateRequest(const path_request_t& request, const PathPlannerNodeOptions& options);
+
+// The path as path_t segments (motion, end pose, radius, speed) tagged with request_id.
+path_t PathToLcm(const PlannedPath& path, int64_t request_id, int64_t utime, double speed, const std::string& status);
+// An answer without a path.
+path_t NoPathToLcm(int64_t request_id, int64_t utime, const std::string& status);
+
+class PathPlannerNode {
+ public:
+  // Subscribes and adds the worker's poll timer (call after runtime.Start()).
+  PathPlannerNode(NodeRuntime& runtime, PathPlannerNodeOptions options, Footprint footprint);
+  ~PathPlannerNode();
+  int Run() { return runtime_.Run(); }
+
+  // Counters (node thread).
+  int64_t requests() const { return requests_; }
+  int64_t answers() const { return answers_; }
+  int64_t replans() const { return replans_; }
+  int64_t map_version() const;
+  bool has_active_path() const { return active_.has_value(); }
+  // Se2Planners built so far (any thread): one per map version, clearance and allow_unknown.
+  int64_t planners_built() const { return planners_built_.load(); }
+
+  struct MapSnapshot;  // one CONTOUR_MAP version, shared with the worker
+  struct Job;
+  struct Answer;
+
+ private:
+  void OnRequest(const path_request_t& request);
+  void OnMap(const contour_map_t& map);
+  void Publish(const path_t& path);
+  void Poll();
+  Answer Handle(Job& job);  // worker thread
+
+  NodeRuntime& runtime_;
+  PathPlannerNodeOptions options_;
+  Footprint footprint_;
+  std::shared_ptr<const MapSnapshot> map_;
+  std::optional<Pose2> pose_;
+  // The last feasible answer, and the request it answers (the goal and settings of a replan).
+  struct Active {
+    path_request_t request;
+    PlannedPath path;
+  };
+  std::optional<Active> active_;
+  int64_t requests_ = 0, answers_ = 0, replans_ = 0;
+  std::atomic<int64_t> planners_built_{0};
+  // Worker-thread state: the planners of the map version in force.
+  struct PlannerCache;
+  std::unique_ptr<PlannerCache> cache_;
+  std::unique_ptr<BackgroundWorker<Job, Answer>> worker_;  // last: stopped first
+};
+
+}  // namespace minenav

@@ -1,0 +1,250 @@
+// path_planner's node on FakeRuntime: requests answered on the worker and tagged with their
+// id, bad requests refused in one line, a goal behind a frontier refused unless exploring, a
+// deadline named, and replanning when a wall appears across the active path (every path
+// judged by the independent checker against the map it was planned on).
+
+#include "planner/path_planner_node.h"
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cmath>
+#include <thread>
+#include <vector>
+
+#include "common/node/contour_map_conversions.h"
+#include "common/node/conversions.h"
+#include "common/node/fake_runtime.h"
+#include "common/node/map_updates.h"
+#include "minenav/pose_estimate_t.hpp"
+#include "planner/testing/path_checker.h"
+
+namespace minenav {
+namespace {
+
+constexpr int64_t kT0 = 1'000'000'000'000'000;
+
+ContourPolyline Poly(std::vector<Eigen::Vector2d> points, bool closed) {
+  ContourPolyline c;
+  c.closed = closed;
+  c.points = std::move(points);
+  return c;
+}
+
+// A 40 x 24 m room seen from inside (closed, counter-clockwise).
+ContourPolyline Room() { return Poly({{0, 0}, {40, 0}, {40, 24}, {0, 24}}, true); }
+// A box seen from outside (closed, clockwise).
+ContourPolyline Box(double x0, double y0, double x1, double y1) {
+  return Poly({{x0, y0}, {x0, y1}, {x1, y1}, {x1, y0}}, true);
+}
+
+contour_map_t MapMessage(int64_t version, std::vector<ContourPolyline> contours, int64_t utime) {
+  ContourMapMessage m;
+  m.utime = utime;
+  m.version = version;
+  m.num_scans = 1;
+  m.contours = std::move(contours);
+  return ContourMapToLcm(m);
+}
+
+path_request_t Request(int64_t id, const Pose2& start, const Pose2& goal, int64_t utime) {
+  path_request_t r{};
+  r.utime = utime;
+  r.request_id = id;
+  r.start = ToLcm(start);
+  r.goal = ToLcm(goal);
+  r.position_tolerance = 0.1;
+  r.heading_tolerance = 0.05;
+  r.allow_reverse = true;
+  r.clearance = 0.1;
+  r.allow_unknown = false;
+  return r;
+}
+
+testing::PathCheckReport Check(const path_t& p, const std::vector<Segment>& map, double clearance) {
+  std::vector<testing::CheckedPiece> pieces;
+  for (const path_segment_t& s : p.segments) pieces.push_back({s.motion, FromLcm(s.end)});
+  testing::PathCheckSettings settings;
+  settings.polygon = Footprint::Rectangle(3.3, 10.0).vertices;
+  settings.clearance = clearance;
+  settings.sample_step = 0.02;
+  return testing::CheckPath(map, FromLcm(p.start), pieces, settings);
+}
+
+struct Harness {
+  explicit Harness(PathPlannerNodeOptions options = {})
+      : node(fake.runtime(), std::move(options), Footprint::Rectangle(3.3, 10.0)) {}
+  // Runs the loop (real time passes for the worker) until `count` PATH messages were
+  // published or `seconds` passed.
+  std::vector<path_t> WaitForPaths(size_t count, double seconds = 60.0) {
+    const auto until = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+    while (std::chrono::steady_clock::now() < until) {
+      clock.Advance(20'000);
+      fake.runtime().SpinOnce(0);
+      if (fake.bus().PublishedOn("PATH").size() >= count) break;
+      std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    }
+    return fake.bus().Decoded<path_t>("PATH");
+  }
+  int64_t now() const { return clock.NowUtime(); }
+
+  ManualClock clock{kT0};
+  FakeRuntime fake{clock};
+  PathPlannerNode node;
+};
+
+TEST(PathPlannerNode, AnswersARequestWithAPathTaggedWithItsId) {
+  Harness h;
+  const std::vector<ContourPolyline> room = {Room()};
+  h.fake.bus().InjectMessage("CONTOUR_MAP", MapMessage(1, room, h.now()));
+  h.fake.bus().InjectMessage("PATH_REQUEST", Request(7, {7, 12, 0}, {33, 12, 0}, h.now()));
+  const std::vector<path_t> paths = h.WaitForPaths(1);
+  ASSERT_EQ(paths.size(), 1u);
+  const path_t& p = paths[0];
+  EXPECT_EQ(p.request_id, 7);
+  ASSERT_TRUE(p.feasible) << p.status;
+  EXPECT_EQ(p.status.rfind("ok: ", 0), 0u) << p.status;
+  EXPECT_EQ(p.num_segments, static_cast<int32_t>(p.segments.size()));
+  ASSERT_GT(p.num_segments, 0);
+  EXPECT_NEAR(p.segments.back().end.x, 33.0, 1e-6);
+  EXPECT_NEAR(p.segments.back().end.y, 12.0, 1e-6);
+  EXPECT_NEAR(p.length, 26.0, 1e-6);  // straight across the room
+  for (const path_segment_t& s : p.segments) {
+    EXPECT_GE(s.motion, 0);
+    EXPECT_LE(s.motion, 6);
+    EXPECT_DOUBLE_EQ(s.speed, 0.076);
+  }
+  const auto report = Check(p, ContourMapSegments(ContourMapMessage{0, 1, 1, room}), 0.1);
+  EXPECT_TRUE(report.ok) << report.problem;
+  EXPECT_TRUE(h.node.has_active_path());
+}
+
+TEST(PathPlannerNode, BadRequestsAreRefusedInOneLine) {
+  Harness h;
+  h.fake.bus().InjectMessage("PATH_REQUEST", Request(1, {7, 12, 0}, {33, 12, 0}, h.now()));  // no map yet
+  h.fake.bus().InjectMessage("CONTOUR_MAP", MapMessage(1, {Room()}, h.now()));
+  path_request_t nan = Request(2, {5, 10, 0}, {std::nan(""), 12, 0}, h.now());
+  path_request_t tolerance = Request(3, {7, 12, 0}, {33, 12, 0}, h.now());
+  tolerance.position_tolerance = -1.0;
+  path_request_t clearance = Request(4, {7, 12, 0}, {33, 12, 0}, h.now());
+  clearance.clearance = 5.0;
+  path_request_t heading = Request(5, {7, 12, 0}, {33, 12, 0}, h.now());
+  heading.heading_tolerance = std::nan("");
+  path_request_t in_wall = Request(6, {7, 12, 0}, {38, 12, 0}, h.now());  // the miner's nose in the wall
+  for (const auto& r : {nan, tolerance, clearance, heading, in_wall}) h.fake.bus().InjectMessage("PATH_REQUEST", r);
+  const std::vector<path_t> paths = h.WaitForPaths(6);
+  ASSERT_EQ(paths.size(), 6u);
+  const char* expected[] = {"no map", "goal is not finite", "position_tolerance", "clearance 5.00 m",
+                            "heading_tolerance", "collision"};
+  std::vector<int64_t> ids;
+  for (const path_t& p : paths) {
+    EXPECT_FALSE(p.feasible);
+    EXPECT_EQ(p.num_segments, 0);
+    EXPECT_EQ(p.status.find('\n'), std::string::npos);
+    ids.push_back(p.request_id);
+    EXPECT_NE(p.status.find(expected[p.request_id - 1]), std::string::npos) << p.request_id << ": " << p.status;
+  }
+  EXPECT_EQ(ids, (std::vector<int64_t>{1, 2, 3, 4, 5, 6}));
+  EXPECT_FALSE(h.node.has_active_path());
+}
+
+TEST(PathPlannerNode, AGoalBehindAFrontierIsRefusedUnlessUnknownSpaceIsAllowed) {
+  Harness h;
+  // A 20 m room with a doorway (y 7..13) in its east wall; beyond it, a pillar seen through
+  // the doorway. The doorway is a frontier: (27, 10) is behind it.
+  const std::vector<ContourPolyline> map = {
+      Poly({{20, 13}, {20, 20}, {0, 20}, {0, 0}, {20, 0}, {20, 7}}, false), Box(36, 8, 38, 12)};
+  h.fake.bus().InjectMessage("CONTOUR_MAP", MapMessage(3, map, h.now()));
+  h.fake.bus().InjectMessage("PATH_REQUEST", Request(1, {8, 10, 0}, {27, 10, 0}, h.now()));
+  path_request_t explore = Request(2, {8, 10, 0}, {27, 10, 0}, h.now());
+  explore.allow_unknown = true;
+  h.fake.bus().InjectMessage("PATH_REQUEST", explore);
+  const std::vector<path_t> paths = h.WaitForPaths(2);
+  ASSERT_EQ(paths.size(), 2u);
+  EXPECT_EQ(paths[0].request_id, 1);
+  EXPECT_FALSE(paths[0].feasible);
+  EXPECT_NE(paths[0].status.find("not in the known free space"), std::string::npos) << paths[0].status;
+  EXPECT_EQ(paths[1].request_id, 2);
+  ASSERT_TRUE(paths[1].feasible) << paths[1].status;
+  // Through the doorway, clear of the walls (the frontier is not a wall for exploration).
+  const auto report = Check(paths[1], ContourMapSegments(ContourMapMessage{0, 3, 1, map}), 0.1);
+  EXPECT_TRUE(report.ok) << report.problem;
+}
+
+TEST(PathPlannerNode, TheDeadlineStopsASearchAndIsNamed) {
+  PathPlannerNodeOptions options;
+  options.deadline = 0.001;
+  options.planner.analytic_shot_interval = 1000;  // no shot straight to the goal
+  Harness h(options);
+  h.fake.bus().InjectMessage("CONTOUR_MAP", MapMessage(1, {Room(), Box(19, 0, 21, 18)}, h.now()));
+  h.fake.bus().InjectMessage("PATH_REQUEST", Request(9, {7, 12, 0}, {33, 12, kPi}, h.now()));
+  const std::vector<path_t> paths = h.WaitForPaths(1);
+  ASSERT_EQ(paths.size(), 1u);
+  EXPECT_FALSE(paths[0].feasible);
+  EXPECT_NE(paths[0].status.find("deadline"), std::string::npos) << paths[0].status;
+}
+
+TEST(PathPlannerNode, AWallAcrossTheActivePathIsAvoidedByAReplannedPathWithTheSameId) {
+  Harness h;
+  const std::vector<ContourPolyline> v1 = {Room()};
+  h.fake.bus().InjectMessage("CONTOUR_MAP", MapMessage(1, v1, h.now()));
+  h.fake.bus().InjectMessage("PATH_REQUEST", Request(42, {7, 12, 0}, {33, 12, 0}, h.now()));
+  std::vector<path_t> paths = h.WaitForPaths(1);
+  ASSERT_EQ(paths.size(), 1u);
+  ASSERT_TRUE(paths[0].feasible) << paths[0].status;
+
+  // The vehicle has driven 2 m; a map version that changes nothing on the path: no new PATH.
+  pose_estimate_t pose{};
+  pose.utime = h.now();
+  pose.source = "clue";
+  pose.pose = ToLcm(Pose2(9, 12, 0));
+  pose.converged = true;
+  pose.status = "ok";
+  h.fake.bus().InjectMessage("POSE", pose);
+  const std::vector<ContourPolyline> v2 = {Room(), Box(36, 20, 38, 22)};
+  h.fake.bus().InjectMessage("CONTOUR_MAP", MapMessage(2, v2, h.now()));
+  paths = h.WaitForPaths(2, 1.0);
+  EXPECT_EQ(paths.size(), 1u) << "a map change off the path replanned it";
+
+  // A wall appears across the path ahead (a box from y 10 to 14 at x 19..21).
+  const std::vector<ContourPolyline> v3 = {Room(), Box(36, 20, 38, 22), Box(19, 10, 21, 14)};
+  h.fake.bus().InjectMessage("CONTOUR_MAP", MapMessage(3, v3, h.now()));
+  paths = h.WaitForPaths(2);
+  ASSERT_EQ(paths.size(), 2u);
+  const path_t& p = paths[1];
+  EXPECT_EQ(p.request_id, 42);
+  ASSERT_TRUE(p.feasible) << p.status;
+  EXPECT_EQ(p.status.rfind("replanned: map version 3 blocks piece", 0), 0u) << p.status;
+  EXPECT_NEAR(p.start.x, 9.0, 1e-9);  // from the latest pose
+  EXPECT_NEAR(p.segments.back().end.x, 33.0, 1e-6);
+  const std::vector<Segment> walls = ContourMapSegments(ContourMapMessage{0, 3, 1, v3});
+  const auto report = Check(p, walls, 0.1);
+  EXPECT_TRUE(report.ok) << report.problem;
+  // The old path did collide with the new wall (so the replan was needed).
+  EXPECT_FALSE(Check(paths[0], walls, 0.01).ok);
+  EXPECT_EQ(h.node.replans(), 1);
+}
+
+TEST(PathPlannerNode, ACompressedMapIsReadAndARepeatedRequestReusesThePlanner) {
+  Harness h;
+  // Many small contours: the plain encoding exceeds the compression threshold.
+  std::vector<ContourPolyline> map = {Room()};
+  for (int k = 0; k < 1500; ++k) {
+    const double x = 1.0 + 0.025 * k;
+    map.push_back(Poly({{x, 23.5}, {x + 0.01, 23.6}, {x + 0.02, 23.5}, {x + 0.01, 23.4}}, true));
+  }
+  const contour_map_t m = MapMessage(1, map, h.now());
+  ASSERT_EQ(m.encoding, contour_map_t::ENCODING_ZLIB);
+  h.fake.bus().InjectMessage("CONTOUR_MAP", m);
+  h.fake.bus().InjectMessage("PATH_REQUEST", Request(1, {7, 12, 0}, {30, 10, 0.3}, h.now()));
+  h.fake.bus().InjectMessage("PATH_REQUEST", Request(2, {8, 12, 0}, {30, 10, 0.3}, h.now()));
+  const std::vector<path_t> paths = h.WaitForPaths(2);
+  ASSERT_EQ(paths.size(), 2u);
+  EXPECT_TRUE(paths[0].feasible) << paths[0].status;
+  EXPECT_TRUE(paths[1].feasible) << paths[1].status;
+  EXPECT_EQ(h.node.map_version(), 1);
+  EXPECT_EQ(h.node.planners_built(), 1);  // the second request used the first's planner
+}
+
+}  // namespace
+}  // namespace minenav
