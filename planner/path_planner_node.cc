@@ -1,5 +1,6 @@
 #include "planner/path_planner_node.h"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <sstream>
@@ -42,13 +43,16 @@ struct PathPlannerNode::PlannerCache {
   int64_t version = -1;
   std::unique_ptr<ContourFreeSpace> space;
   std::unique_ptr<KnownFreeSpace> known;
-  // (clearance, allow_unknown) -> planner on this version's walls.
-  std::map<std::pair<double, bool>, std::unique_ptr<Se2Planner>> planners;
+  // (clearance, allow_unknown, allow_reverse) -> planner on this version's walls.
+  std::map<std::tuple<double, bool, bool>, std::unique_ptr<Se2Planner>> planners;
 };
 
 namespace {
 
 constexpr size_t kMaxPlannersPerMap = 8;
+// A request that does not allow reversing: a metre reversed costs this many driven forward
+// (the largest costs.reverse_factor), and a path that still reverses is refused.
+constexpr double kNoReverseFactor = 100.0;
 
 std::string Fixed(double v, int digits = 2) {
   std::ostringstream s;
@@ -232,12 +236,13 @@ PathPlannerNode::Answer PathPlannerNode::Handle(Job& job) {
     cache.planners.clear();
   }
   const double clearance = r.clearance > 0.0 ? r.clearance : options_.default_clearance;
-  const std::pair<double, bool> key(clearance, r.allow_unknown);
+  const std::tuple<double, bool, bool> key(clearance, r.allow_unknown, r.allow_reverse);
   auto it = cache.planners.find(key);
   if (it == cache.planners.end()) {
     if (cache.planners.size() >= kMaxPlannersPerMap) cache.planners.clear();
     Se2PlannerOptions po = options_.planner;
     po.clearance = clearance;
+    if (!r.allow_reverse) po.costs.reverse_factor = std::max(po.costs.reverse_factor, kNoReverseFactor);
     ++planners_built_;
     it = cache.planners.emplace(key, std::make_unique<Se2Planner>(cache.space->Boundary(r.allow_unknown), footprint_, po))
              .first;
@@ -317,6 +322,11 @@ PathPlannerNode::Answer PathPlannerNode::Handle(Job& job) {
       why += " (in the known free space; allow_unknown explores)";
     return refuse(why);
   }
+  if (!r.allow_reverse)
+    for (const MotionPiece& p : result.path.pieces)
+      if (DriveDirection(p.motion) < 0)
+        return refuse("no_path: every path found reverses (" + ToString(p.motion) + " to " + Where(p.end) +
+                      ") and the request does not allow reversing");
   std::ostringstream status;
   status << prefix << "ok: " << Fixed(result.path.Length()) << " m, " << result.path.pieces.size() << " pieces, "
          << result.path.Reversals() << " reversals, " << result.expansions << " expansions, " << Fixed(ms, 1)

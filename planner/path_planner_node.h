@@ -11,7 +11,7 @@
 //                 bounded by `deadline` (SearchLimits::stop_requested) and the answer names
 //                 the bound that stopped it.
 //   CONTOUR_MAP   plain or zlib (common/node/contour_map_conversions.h). One Se2Planner per
-//                 (map version, clearance, allow_unknown), so repeated requests to a goal on
+//                 (map version, clearance, allow_unknown, allow_reverse), so repeated requests to a goal on
 //                 one map reuse its cached heuristic. A new version re-checks the rest of the
 //                 active path (from the latest POSE's closest point on it) with
 //                 Se2Planner::PieceCollides; when blocked the node replans from the latest
@@ -19,6 +19,8 @@
 //                 status "replanned: <why>".
 //   POSE          the vehicle's estimate (pose_estimate_t; converged estimates only).
 //   PATH          path_t: feasible with the motions, or feasible = false and the one-line reason.
+// A request with allow_reverse = false is planned with reversing priced at 100 m a metre and
+// refused when the path found still reverses.
 
 #include <atomic>
 #include <chrono>
@@ -84,7 +86,7 @@ class PathPlannerNode {
   int64_t replans() const { return replans_; }
   int64_t map_version() const;
   bool has_active_path() const { return active_.has_value(); }
-  // Se2Planners built so far (any thread): one per map version, clearance and allow_unknown.
+  // Se2Planners built so far (any thread): one per map version, clearance, allow_unknown and allow_reverse.
   int64_t planners_built() const { return planners_built_.load(); }
 
   struct MapSnapshot;  // one CONTOUR_MAP version, shared with the worker

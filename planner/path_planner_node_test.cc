@@ -171,6 +171,30 @@ TEST(PathPlannerNode, AGoalBehindAFrontierIsRefusedUnlessUnknownSpaceIsAllowed) 
   EXPECT_TRUE(report.ok) << report.problem;
 }
 
+TEST(PathPlannerNode, ARequestThatDoesNotAllowReversingGetsNoReverseMotion) {
+  Harness h;
+  // A 6 m entry: the miner cannot turn round in it, so a goal behind it takes reversing.
+  const std::vector<ContourPolyline> entry = {Poly({{0, 0}, {40, 0}, {40, 6}, {0, 6}}, true)};
+  h.fake.bus().InjectMessage("CONTOUR_MAP", MapMessage(1, entry, h.now()));
+  path_request_t back = Request(1, {20, 3, 0}, {12, 3, 0}, h.now());
+  back.allow_reverse = false;
+  h.fake.bus().InjectMessage("PATH_REQUEST", back);
+  back.request_id = 2;
+  back.allow_reverse = true;
+  h.fake.bus().InjectMessage("PATH_REQUEST", back);
+  path_request_t ahead = Request(3, {12, 3, 0}, {30, 3, 0}, h.now());
+  ahead.allow_reverse = false;
+  h.fake.bus().InjectMessage("PATH_REQUEST", ahead);
+  const std::vector<path_t> paths = h.WaitForPaths(3);
+  ASSERT_EQ(paths.size(), 3u);
+  EXPECT_FALSE(paths[0].feasible);
+  EXPECT_NE(paths[0].status.find("does not allow reversing"), std::string::npos) << paths[0].status;
+  ASSERT_TRUE(paths[1].feasible) << paths[1].status;
+  EXPECT_EQ(paths[1].segments.front().motion, path_segment_t::REVERSE);
+  ASSERT_TRUE(paths[2].feasible) << paths[2].status;
+  for (const path_segment_t& s : paths[2].segments) EXPECT_NE(DriveDirection(static_cast<Motion>(s.motion)), -1);
+}
+
 TEST(PathPlannerNode, TheDeadlineStopsASearchAndIsNamed) {
   PathPlannerNodeOptions options;
   options.deadline = 0.001;
