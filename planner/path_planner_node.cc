@@ -288,7 +288,10 @@ PathPlannerNode::Answer PathPlannerNode::Handle(Job& job) {
     MINENAV_LOG(kInfo) << "request " << r.request_id << " " << prefix;
   }
 
-  const auto deadline = t0 + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+  // The deadline bounds the search; building the free space and the planner for a new map
+  // version (bounded by the map's size, done once per version) comes before it.
+  const auto search_start = std::chrono::steady_clock::now();
+  const auto deadline = search_start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
                                  std::chrono::duration<double>(options_.deadline));
   bool deadline_passed = false;
   SearchLimits limits = options_.search;

@@ -48,7 +48,7 @@ struct PathPlannerNodeOptions {
   std::string map_channel = "CONTOUR_MAP";
   std::string pose_channel = "POSE";
   std::string path_channel = "PATH";
-  double deadline = 5.0;            // s of wall time per search (request or replan). Default 5.
+  double deadline = 5.0;            // s of wall time per search (request or replan; not the planner's setup for a new map). Default 5.
   double default_clearance = 0.1;   // m, used when a request's clearance is 0. Default 0.1.
   double max_clearance = 2.0;       // m, larger requested clearances are refused. Default 2.
   double max_tolerance = 5.0;       // m (position) and rad (heading) a request may give. Default 5.
