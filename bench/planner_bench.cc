@@ -93,7 +93,8 @@ int Run(int argc, char** argv) {
   int seeds = 3, instances = 4;
   double deadline = 10.0, displacement = 0.1, clearance = 0.05;
   bool grid = true, shot_heuristic = true;
-  std::string json_out;
+  std::string json_out, only;
+  minenav::Se2PlannerOptions options;
   minenav::ConfigSchema schema("planner_bench", "SE(2) planner on the synthetic mine's maneuvers and the grid search on Moving AI.");
   schema.AddInt("seeds", &seeds, "synthetic mines (seeds 1..n)", 1, 100);
   schema.AddInt("instances", &instances, "requests per scenario and mine", 1, 100);
@@ -103,10 +104,11 @@ int Run(int argc, char** argv) {
   schema.AddBool("shot_heuristic", &shot_heuristic, "the planner's shot_heuristic option");
   schema.AddBool("grid", &grid, "run the Moving AI section");
   schema.AddString("json_out", &json_out, "write the results as JSON to this file ('' = none)");
+  schema.AddString("only", &only, "plan only the scenarios whose names are in this comma list ('' = all)");
+  minenav::DeclareOptions(minenav::OptionScope(schema).Nested("planner"), options);  // planner.clearance and planner.shot_heuristic: see --clearance, --shot_heuristic
   if (schema.Parse(argc, argv) == minenav::ParseOutcome::kExit) return 0;
 
   const minenav::Footprint miner = minenav::Footprint::Rectangle(3.3, 10.0);
-  minenav::Se2PlannerOptions options;
   options.clearance = clearance;
   options.shot_heuristic = shot_heuristic;
   minenav::SearchLimits limits;
@@ -191,6 +193,7 @@ int Run(int argc, char** argv) {
       const Request& q = requests[i];
       Outcome& o = outcomes[i];
       if (pass == 1 && !o.found) continue;  // warm times only where the cold request found a path
+      if (!only.empty() && ("," + only + ",").find("," + q.scenario + ",") == std::string::npos) continue;
       const double t0 = bench::Now();
       stop_at = t0 + deadline;
       const Se2PlanResult r = q.planner->Plan(q.start, q.goal, limits);
@@ -239,6 +242,7 @@ int Run(int argc, char** argv) {
     std::vector<double> cold, warm, expansions, length, reversals;
     double states = 0.0;
     int n = 0, ok = 0;
+    if (!only.empty() && ("," + only + ",").find("," + name + ",") == std::string::npos) continue;
     for (size_t i = 0; i < requests.size(); ++i) {
       if (requests[i].scenario != name) continue;
       const Outcome& o = outcomes[i];

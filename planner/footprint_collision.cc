@@ -46,6 +46,11 @@ FootprintCollisionChecker::FootprintCollisionChecker(const StaticSegmentIndex& w
     for (size_t i = 0; i < v.size(); ++i) e = std::min(e, PointToSegmentDistance(q, {v[i], v[(i + 1) % v.size()]}));
     return e;
   };
+  box_lo_ = box_hi_ = v.front();
+  for (const auto& p : v) {
+    box_lo_ = box_lo_.cwiseMin(p);
+    box_hi_ = box_hi_.cwiseMax(p);
+  }
   inside_.push_back({Eigen::Vector2d::Zero(), inscribed_});
   for (const Disc& d : discs_)
     if (PolygonContains(v, d.centre)) inside_.push_back({d.centre, inset(d.centre)});
@@ -73,21 +78,33 @@ PoseCheck FootprintCollisionChecker::Check(const Pose2& pose, double c, double s
 }
 
 bool FootprintCollisionChecker::CollidesExactly(const Pose2& pose) const {
+  // In the vehicle frame: each wall near the pose is turned into it (two rotations), and a
+  // wall whose bounding box is more than the margin away from the polygon's bounding box
+  // (in x or in y) is farther than the margin from every point of the polygon: skipped
+  // without the polygon tests. Only the walls beside the box are tested edge by edge.
   ++counters_.exact_tests;
-  world_.clear();
-  for (const auto& v : footprint_.vertices) world_.push_back(pose * v);
+  const double c = std::cos(pose.theta), s = std::sin(pose.theta);
+  const Eigen::Vector2d lo = box_lo_ - Eigen::Vector2d::Constant(margin_), hi = box_hi_ + Eigen::Vector2d::Constant(margin_);
+  const auto& v = footprint_.vertices;
   bool hit = false;
   const auto& segments = walls_.segments();
   walls_.ForEachNear(pose.translation(), circumscribed_ + margin_, [&](int i) {
     if (hit) return;
     const Segment& w = segments[static_cast<size_t>(i)];
-    if (PolygonContains(world_, w.a) || PolygonContains(world_, w.b)) {
+    const Eigen::Vector2d da = w.a - pose.translation(), db = w.b - pose.translation();
+    const Eigen::Vector2d a(c * da.x() + s * da.y(), -s * da.x() + c * da.y());
+    const Eigen::Vector2d b(c * db.x() + s * db.y(), -s * db.x() + c * db.y());
+    if (std::max(a.x(), b.x()) < lo.x() || std::min(a.x(), b.x()) > hi.x() || std::max(a.y(), b.y()) < lo.y() ||
+        std::min(a.y(), b.y()) > hi.y())
+      return;
+    if (PolygonContains(v, a) || PolygonContains(v, b)) {
       hit = true;
       return;
     }
-    for (size_t k = 0; k < world_.size() && !hit; ++k) {
-      const Segment edge(world_[k], world_[(k + 1) % world_.size()]);
-      hit = margin_ > 0.0 ? SegmentToSegmentDistance(edge, w) < margin_ : SegmentIntersection(edge, w).has_value();
+    const Segment local(a, b);
+    for (size_t k = 0; k < v.size() && !hit; ++k) {
+      const Segment edge(v[k], v[(k + 1) % v.size()]);
+      hit = margin_ > 0.0 ? SegmentToSegmentDistance(edge, local) < margin_ : SegmentIntersection(edge, local).has_value();
     }
   });
   return hit;

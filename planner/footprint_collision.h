@@ -81,8 +81,8 @@ class FootprintCollisionChecker {
   double margin_, inscribed_, circumscribed_;
   std::vector<Disc> discs_;
   std::vector<Disc> inside_;  // points inside the polygon, radius = their distance to its boundary
+  Eigen::Vector2d box_lo_, box_hi_;  // the polygon's bounding box (vehicle frame)
   mutable CollisionCounters counters_;
-  mutable std::vector<Eigen::Vector2d> world_;  // the polygon at the pose being tested
 };
 
 }  // namespace minenav
