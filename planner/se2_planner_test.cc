@@ -312,6 +312,40 @@ TEST(Se2PlannerTest, TurnsACornerWhereTurningInPlaceDoesNotFit) {
   EXPECT_GT(r.path.Length(), 0.9 * std::hypot(12.0, 12.0));
 }
 
+// The largest clearance (m) of the miner at heading theta anywhere in a crossing of two
+// `width` entries: the independent checker's distance at every centre of a 1 cm grid over
+// the crossing (the walls' distance is 1-Lipschitz in the centre: the grid loses < 0.01 m).
+double LargestClearanceInCrossing(double width, double theta) {
+  const std::vector<Segment> map = planner_test::Crossing(width, 20.0);
+  testing::PathCheckSettings st;
+  st.polygon = Footprint::Rectangle(3.3, 10.0).vertices;
+  double best = -1.0;
+  for (double x = -3.0; x <= 3.0; x += 0.01)
+    for (double y = -3.0; y <= 3.0; y += 0.01) {
+      const auto report = testing::CheckPath(map, Pose2(x, y, theta), {}, st);
+      if (report.ok) best = std::max(best, report.min_clearance);
+    }
+  return best;
+}
+
+TEST(Se2PlannerTest, AMinerTurningInA6mCrossingHasCentimetresAt45Degrees) {
+  // Any turn from an entry into a crosscut passes heading 45 deg (mod 90); in a 6 m entry
+  // the miner at 45 deg spans 10 sin 45 + 3.3 cos 45 = 9.4 m across, so that pose is in a
+  // crossing. There, in the frame along (u) and across (v) the miner's axis through the
+  // crossing's centre, the pillar corners are wedges with tips 3 sqrt 2 = 4.24 m out: the
+  // miner's end corners (u = +-5, v = v0 - 1.65) clear the wedges of the pillars it points
+  // at by (v0 - 2.41) / sqrt 2, its long side (v = v0 + 1.65) the third corner's tip by
+  // 2.59 - v0: at best (v0 = 2.52) 0.077 m. The planner keeps clearance + collision_step / 2
+  // (0.05 + 0.025 m in the bench): 2 mm of room before the walls' jitter (up to 0.2 m). In
+  // 6.5 m entries the same construction gives 0.37 m.
+  const double at_6 = LargestClearanceInCrossing(6.0, kPi / 4);
+  EXPECT_GT(at_6, 0.06);
+  EXPECT_LT(at_6, 0.08);
+  const double at_65 = LargestClearanceInCrossing(6.5, kPi / 4);
+  EXPECT_GT(at_65, 0.35);
+  EXPECT_LT(at_65, 0.38);
+}
+
 TEST(Se2PlannerTest, BacksIntoTheCrosscutWithAMultiPointManeuver) {
   // The same miner ends in the east crosscut facing back west, as before a slab cut: it
   // cannot turn round in 6 m, so the maneuver must reverse (forward into the crossing, back
