@@ -74,16 +74,15 @@ PoseCheck FootprintCollisionChecker::Check(const Pose2& pose, double c, double s
       ++counters_.blocked_by_field;
       return {true, 0.0};
     }
-  return {CollidesExactly(pose), 0.0};
+  return {CollidesExactly(pose, c, s), 0.0};
 }
 
-bool FootprintCollisionChecker::CollidesExactly(const Pose2& pose) const {
+bool FootprintCollisionChecker::CollidesExactly(const Pose2& pose, double c, double s) const {
   // In the vehicle frame: each wall near the pose is turned into it (two rotations), and a
   // wall whose bounding box is more than the margin away from the polygon's bounding box
   // (in x or in y) is farther than the margin from every point of the polygon: skipped
   // without the polygon tests. Only the walls beside the box are tested edge by edge.
   ++counters_.exact_tests;
-  const double c = std::cos(pose.theta), s = std::sin(pose.theta);
   const Eigen::Vector2d lo = box_lo_ - Eigen::Vector2d::Constant(margin_), hi = box_hi_ + Eigen::Vector2d::Constant(margin_);
   const auto& v = footprint_.vertices;
   bool hit = false;
@@ -102,8 +101,16 @@ bool FootprintCollisionChecker::CollidesExactly(const Pose2& pose) const {
       return;
     }
     const Segment local(a, b);
+    const Eigen::Vector2d wlo = a.cwiseMin(b) - Eigen::Vector2d::Constant(margin_),
+                          whi = a.cwiseMax(b) + Eigen::Vector2d::Constant(margin_);
     for (size_t k = 0; k < v.size() && !hit; ++k) {
-      const Segment edge(v[k], v[(k + 1) % v.size()]);
+      const Eigen::Vector2d& p = v[k];
+      const Eigen::Vector2d& q = v[(k + 1) % v.size()];
+      // An edge whose box is beyond the margin of the wall's box cannot come within it.
+      if (std::max(p.x(), q.x()) < wlo.x() || std::min(p.x(), q.x()) > whi.x() || std::max(p.y(), q.y()) < wlo.y() ||
+          std::min(p.y(), q.y()) > whi.y())
+        continue;
+      const Segment edge(p, q);
       hit = margin_ > 0.0 ? SegmentToSegmentDistance(edge, local) < margin_ : SegmentIntersection(edge, local).has_value();
     }
   });

@@ -15,6 +15,7 @@
 // Both field decisions are implied by the exact test's answer, so the field changes the time
 // a check takes, never its result (planner_test checks that against brute force).
 
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -65,7 +66,8 @@ class FootprintCollisionChecker {
   // The same with the heading's cosine and sine given (the planner's precomputed sweeps).
   PoseCheck Check(const Pose2& pose, double cos_theta, double sin_theta) const;
   // The exact test alone (no field), for tests and for poses the field does not cover.
-  bool CollidesExactly(const Pose2& pose) const;
+  bool CollidesExactly(const Pose2& pose) const { return CollidesExactly(pose, std::cos(pose.theta), std::sin(pose.theta)); }
+  bool CollidesExactly(const Pose2& pose, double cos_theta, double sin_theta) const;
 
   const Footprint& footprint() const { return footprint_; }
   const std::vector<Disc>& discs() const { return discs_; }
