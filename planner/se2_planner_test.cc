@@ -346,6 +346,27 @@ TEST(Se2PlannerTest, AMinerTurningInA6mCrossingHasCentimetresAt45Degrees) {
   EXPECT_LT(at_65, 0.38);
 }
 
+TEST(Se2PlannerTest, TurnsAndBacksIntoA65mCrosscutWithTheBenchClearanceWithinABoundOfExpansions) {
+  // With 6.5 m entries (0.37 m to spare at 45 deg, above) and the bench's 0.05 m clearance
+  // the corner turns left and right are found in a few hundred expansions (61 measured), the
+  // backing into the crosscut facing back (a cusp in the crossing) in under 40,000 (26,281).
+  const std::vector<Segment> map = planner_test::Crossing(6.5, 20.0);
+  Se2PlannerOptions o;
+  o.clearance = 0.05;
+  const Se2Planner planner(map, Footprint::Rectangle(3.3, 10.0), o);
+  SearchLimits limits;
+  const Pose2 s(0, -12, kPi / 2);
+  for (const auto& [g, bound] : {std::pair{Pose2(12, 0, 0.0), 500}, std::pair{Pose2(-12, 0, kPi), 500},
+                                 std::pair{Pose2(12, 0, kPi), 40000}}) {
+    limits.max_expansions = bound;
+    const Se2PlanResult r = planner.Plan(s, g, limits);
+    ASSERT_EQ(r.status, SearchStatus::kFound) << r.reason;
+    const auto report = testing::CheckPath(map, s, AsChecked(r.path), CheckerFor(planner));
+    EXPECT_TRUE(report.ok) << report.problem;
+    EXPECT_GT(r.path.Length(), 16.0);
+  }
+}
+
 TEST(Se2PlannerTest, BacksIntoTheCrosscutWithAMultiPointManeuver) {
   // The same miner ends in the east crosscut facing back west, as before a slab cut: it
   // cannot turn round in 6 m, so the maneuver must reverse (forward into the crossing, back
