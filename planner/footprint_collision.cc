@@ -74,20 +74,25 @@ PoseCheck FootprintCollisionChecker::Check(const Pose2& pose, double c, double s
       ++counters_.blocked_by_field;
       return {true, 0.0};
     }
-  return {CollidesExactly(pose, c, s), 0.0};
+  const double exact = ExactSpare(pose, c, s);
+  return {exact < 0.0, std::max(0.0, exact)};
 }
 
-bool FootprintCollisionChecker::CollidesExactly(const Pose2& pose, double c, double s) const {
+double FootprintCollisionChecker::ExactSpare(const Pose2& pose, double c, double s) const {
   // In the vehicle frame: each wall near the pose is turned into it (two rotations), and a
-  // wall whose bounding box is more than the margin away from the polygon's bounding box
-  // (in x or in y) is farther than the margin from every point of the polygon: skipped
-  // without the polygon tests. Only the walls beside the box are tested edge by edge.
+  // wall whose bounding box is more than margin + cap away from the polygon's bounding box
+  // (in x or in y) is farther than that from every point of the polygon: skipped without
+  // the polygon tests. Of the rest only the polygon edges whose box comes within margin +
+  // cap of the wall's box are measured. A wall end inside the polygon, or a wall within the
+  // margin of an edge (touching it when the margin is 0), is a collision.
   ++counters_.exact_tests;
-  const Eigen::Vector2d lo = box_lo_ - Eigen::Vector2d::Constant(margin_), hi = box_hi_ + Eigen::Vector2d::Constant(margin_);
+  const double reach = margin_ + kExactSpareCap;
+  const Eigen::Vector2d lo = box_lo_ - Eigen::Vector2d::Constant(reach), hi = box_hi_ + Eigen::Vector2d::Constant(reach);
   const auto& v = footprint_.vertices;
+  double nearest = reach;  // the least distance measured, up to margin + cap
   bool hit = false;
   const auto& segments = walls_.segments();
-  walls_.ForEachNear(pose.translation(), circumscribed_ + margin_, [&](int i) {
+  walls_.ForEachNear(pose.translation(), circumscribed_ + reach, [&](int i) {
     if (hit) return;
     const Segment& w = segments[static_cast<size_t>(i)];
     const Eigen::Vector2d da = w.a - pose.translation(), db = w.b - pose.translation();
@@ -101,20 +106,21 @@ bool FootprintCollisionChecker::CollidesExactly(const Pose2& pose, double c, dou
       return;
     }
     const Segment local(a, b);
-    const Eigen::Vector2d wlo = a.cwiseMin(b) - Eigen::Vector2d::Constant(margin_),
-                          whi = a.cwiseMax(b) + Eigen::Vector2d::Constant(margin_);
+    const Eigen::Vector2d wlo = a.cwiseMin(b) - Eigen::Vector2d::Constant(nearest),
+                          whi = a.cwiseMax(b) + Eigen::Vector2d::Constant(nearest);
     for (size_t k = 0; k < v.size() && !hit; ++k) {
       const Eigen::Vector2d& p = v[k];
       const Eigen::Vector2d& q = v[(k + 1) % v.size()];
-      // An edge whose box is beyond the margin of the wall's box cannot come within it.
+      // An edge whose box is beyond `nearest` of the wall's box cannot come nearer.
       if (std::max(p.x(), q.x()) < wlo.x() || std::min(p.x(), q.x()) > whi.x() || std::max(p.y(), q.y()) < wlo.y() ||
           std::min(p.y(), q.y()) > whi.y())
         continue;
-      const Segment edge(p, q);
-      hit = margin_ > 0.0 ? SegmentToSegmentDistance(edge, local) < margin_ : SegmentIntersection(edge, local).has_value();
+      const double d = SegmentToSegmentDistance(Segment(p, q), local);
+      hit = d < margin_ || d <= 0.0;
+      nearest = std::min(nearest, d);
     }
   });
-  return hit;
+  return hit ? -1.0 : std::min(kExactSpareCap, nearest - margin_);
 }
 
 }  // namespace minenav

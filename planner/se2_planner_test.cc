@@ -148,6 +148,47 @@ TEST(FootprintCollisionTest, FieldAndExactTestAgreeWithBruteForce) {
   EXPECT_GT(blocked, 1000);
 }
 
+TEST(FootprintCollisionTest, TheSpareOfEveryCheckHoldsAgainstBruteForce) {
+  // A check that says free with s m to spare: every pose whose points all move at most s
+  // (a translation t and a turn d about the origin with |t| + circumscribed |d| <= s) is free
+  // by brute force with the margin. Poses near the walls (the exact test's spare) and in the
+  // open (the discs').
+  std::vector<Segment> walls = planner_test::Crossing(6.0, 20.0);
+  walls.push_back({2.0, 8.0, 2.5, 9.0});
+  planner_test::AddBox(walls, -20, -20, 20, 20);
+  const double margin = 0.075;
+  const Footprint miner = Footprint::Rectangle(3.3, 10.0);
+  const StaticSegmentIndex index(walls);
+  const GridFrame frame = GridFrame::Covering(Eigen::Vector2d(-20, -20), Eigen::Vector2d(20, 20), 0.2, 0.0);
+  const ClearanceField field(walls, frame, 8.0);
+  const FootprintCollisionChecker checker(index, field, miner, margin);
+  testing::PathCheckSettings st;
+  st.polygon = miner.vertices;
+  st.clearance = margin;
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> along(-12, 12), across(-1.5, 1.5), a(-0.1, 0.1), unit(0, 1), dir(-kPi, kPi);
+  int exact_spares = 0, moved = 0;
+  for (int i = 0; i < 3000; ++i) {
+    // In one of the four arms, roughly along it.
+    const int arm = i % 4;
+    Pose2 p = arm < 2 ? Pose2(along(rng), across(rng), a(rng) + arm * kPi) : Pose2(across(rng), along(rng), a(rng) + kPi / 2 + arm * kPi);
+    const int64_t exact_before = checker.counters().exact_tests;
+    const PoseCheck c = checker.Check(p);
+    if (c.collides || c.spare <= 0.0) continue;
+    exact_spares += checker.counters().exact_tests > exact_before;
+    for (int k = 0; k < 5; ++k) {
+      const double share = unit(rng), heading = dir(rng);
+      const double t = share * c.spare, d = (1.0 - share) * c.spare / checker.circumscribed_radius();
+      const Pose2 q(p.x + t * std::cos(heading), p.y + t * std::sin(heading), p.theta + (unit(rng) < 0.5 ? d : -d));
+      ASSERT_TRUE(BruteForceFree(walls, q, st, 20.0)) << p << " spare " << c.spare << " moved to " << q;
+      ++moved;
+    }
+  }
+  EXPECT_GT(moved, 2000);
+  EXPECT_GT(checker.counters().exact_tests, 300);
+  EXPECT_GT(exact_spares, 100);
+}
+
 TEST(FootprintCollisionTest, DiscCoverHoldsThePolygonAndDecidesMostPosesInAnEntry) {
   const Footprint miner = Footprint::Rectangle(3.3, 10.0);
   const std::vector<Disc> discs = DiscCover(miner, 8);
