@@ -309,8 +309,8 @@ Se2PlanResult Se2Planner::Plan(const Pose2& start_in, const Pose2& goal_in, cons
     if (d2 == kInf) return kInf;
     double free_space = FreeSpaceLowerBound(p, goal, r, costs);
     if (options_.shot_heuristic) {
-      const std::vector<AnalyticShot> shots = AnalyticShots(p, goal, r, costs, direction);
-      if (!shots.empty()) free_space = std::max(free_space, shots.front().cost);
+      const double shot = CheapestShotCost(p, goal, r, costs, direction);
+      if (shot < kInf) free_space = std::max(free_space, shot);
     }
     return std::max(d2, free_space);
   };

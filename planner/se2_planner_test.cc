@@ -108,6 +108,27 @@ TEST(AnalyticShotTest, EveryShotIsAFeasiblePathToTheGoal) {
   EXPECT_GT(csc, 300);  // the Dubins words exist for most pairs this far apart
 }
 
+TEST(AnalyticShotTest, TheCheapestShotCostIsTheCheapestShotsCost) {
+  // The heuristic's cost-only shot against the built, traced and sorted shots: random pairs,
+  // near pairs (loops, empty pieces) and the same position, after each previous direction.
+  std::mt19937 rng(8);
+  std::uniform_real_distribution<double> u(-20, 20), near(-1, 1), a(-kPi, kPi);
+  MotionCosts costs;
+  costs.turn_in_place_per_rad = 1.3;
+  for (int trial = 0; trial < 600; ++trial) {
+    const Pose2 from(u(rng), u(rng), a(rng));
+    const Pose2 to = trial % 3 == 0   ? Pose2(u(rng), u(rng), a(rng))
+                     : trial % 3 == 1 ? Pose2(from.x + near(rng), from.y + near(rng), a(rng))
+                                      : Pose2(from.x, from.y, trial % 2 ? from.theta : a(rng));
+    for (const int previous : {0, 1, -1}) {
+      const auto shots = AnalyticShots(from, to, 4.0, costs, previous);
+      ASSERT_FALSE(shots.empty());
+      EXPECT_NEAR(CheapestShotCost(from, to, 4.0, costs, previous), shots.front().cost, 1e-9)
+          << from << " -> " << to << " after " << previous;
+    }
+  }
+}
+
 TEST(FootprintTest, RectangleRadiiAndValidation) {
   const Footprint f = Footprint::Rectangle(3.3, 10.0);
   EXPECT_NEAR(InscribedRadius(f), 1.65, 1e-12);
