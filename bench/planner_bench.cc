@@ -21,6 +21,7 @@
 // and expansions per bucket, and how many lengths equal the published optimum within 1e-3.
 //
 //   planner_bench [--seeds 3] [--instances 4] [--deadline 10] [--grid true] [--json_out FILE]
+//                 [--room_width 6] [--only box_cut,turn] [--planner.xy-resolution 0.1 ...]
 
 #include <algorithm>
 #include <cmath>
