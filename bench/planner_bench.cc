@@ -21,6 +21,7 @@
 // and expansions per bucket, and how many lengths equal the published optimum within 1e-3.
 //
 //   planner_bench [--seeds 3] [--instances 4] [--deadline 10] [--grid true] [--json_out FILE]
+//                 [--room_width 6] [--only box_cut,turn] [--planner.xy-resolution 0.1 ...]
 
 #include <algorithm>
 #include <cmath>
@@ -49,7 +50,9 @@ using minenav::Se2PlanResult;
 using minenav::Segment;
 namespace bench = minenav::bench;
 
-constexpr double kPillar = 12.0, kRoom = 6.0, kPitch = kPillar + kRoom;
+constexpr double kPillar = 12.0;
+// The entries' width (--room_width, default 6 m) and the pillar pitch.
+double room = 6.0, pitch = kPillar + room;
 constexpr double kBytesPerState = 80.0;  // search_limits.h: about 80 bytes per stored SE(2) state
 
 double Percentile(std::vector<double> v, double q) {
@@ -75,10 +78,10 @@ struct Outcome {
 };
 
 // Entry k (0 = south boundary entry) centre line y; crosscut c centre line x.
-double EntryY(int k) { return 0.5 * kRoom + k * kPitch; }
-double CrosscutX(int c) { return 0.5 * kRoom + c * kPitch; }
+double EntryY(int k) { return 0.5 * room + k * pitch; }
+double CrosscutX(int c) { return 0.5 * room + c * pitch; }
 // A face across an entry 1 m before the crossing east of pillar column c: a dead end 11 m long.
-double FaceX(int c) { return kRoom + c * kPitch + kPillar - 1.0; }
+double FaceX(int c) { return room + c * pitch + kPillar - 1.0; }
 
 // The first free pose from `p` moving by `step` (at most `tries` times); p itself if none.
 Pose2 NudgeFree(const Se2Planner& planner, Pose2 p, const Eigen::Vector2d& step, int tries) {
@@ -93,7 +96,8 @@ int Run(int argc, char** argv) {
   int seeds = 3, instances = 4;
   double deadline = 10.0, displacement = 0.1, clearance = 0.05;
   bool grid = true, shot_heuristic = true;
-  std::string json_out;
+  std::string json_out, only;
+  minenav::Se2PlannerOptions options;
   minenav::ConfigSchema schema("planner_bench", "SE(2) planner on the synthetic mine's maneuvers and the grid search on Moving AI.");
   schema.AddInt("seeds", &seeds, "synthetic mines (seeds 1..n)", 1, 100);
   schema.AddInt("instances", &instances, "requests per scenario and mine", 1, 100);
@@ -103,10 +107,16 @@ int Run(int argc, char** argv) {
   schema.AddBool("shot_heuristic", &shot_heuristic, "the planner's shot_heuristic option");
   schema.AddBool("grid", &grid, "run the Moving AI section");
   schema.AddString("json_out", &json_out, "write the results as JSON to this file ('' = none)");
+  schema.AddDouble("room_width", &room, "m",
+                   "the entries' and crosscuts' width (6 m: a miner turning at a crossing has 0.077 m at 45 deg, "
+                   "planner_test)",
+                   4.0, 20.0);
+  schema.AddString("only", &only, "plan only the scenarios whose names are in this comma list ('' = all)");
+  minenav::DeclareOptions(minenav::OptionScope(schema).Nested("planner"), options);  // planner.clearance and planner.shot_heuristic: see --clearance, --shot_heuristic
   if (schema.Parse(argc, argv) == minenav::ParseOutcome::kExit) return 0;
+  pitch = kPillar + room;
 
   const minenav::Footprint miner = minenav::Footprint::Rectangle(3.3, 10.0);
-  minenav::Se2PlannerOptions options;
   options.clearance = clearance;
   options.shot_heuristic = shot_heuristic;
   minenav::SearchLimits limits;
@@ -123,7 +133,7 @@ int Run(int argc, char** argv) {
     mine.pillar_rows = 4;
     mine.pillar_cols = 6;
     mine.pillar_size = kPillar;
-    mine.room_width = kRoom;
+    mine.room_width = room;
     mine.midpoint_displacement = displacement;
     mine.seed = static_cast<uint64_t>(seed);
     const std::vector<Segment> plain = minenav::GenerateRoomAndPillarMine(mine);
@@ -136,7 +146,7 @@ int Run(int argc, char** argv) {
     std::vector<Segment> with_faces = plain;
     for (const auto& [k, c] : faces) {
       const double xf = FaceX(c);
-      with_faces.push_back({xf, k * kPitch - 1.0, xf, k * kPitch + kRoom + 1.0});
+      with_faces.push_back({xf, k * pitch - 1.0, xf, k * pitch + room + 1.0});
     }
     for (const std::vector<Segment>* m : {&plain, static_cast<const std::vector<Segment>*>(&with_faces)}) {
       const double t0 = bench::Now();
@@ -191,6 +201,7 @@ int Run(int argc, char** argv) {
       const Request& q = requests[i];
       Outcome& o = outcomes[i];
       if (pass == 1 && !o.found) continue;  // warm times only where the cold request found a path
+      if (!only.empty() && ("," + only + ",").find("," + q.scenario + ",") == std::string::npos) continue;
       const double t0 = bench::Now();
       stop_at = t0 + deadline;
       const Se2PlanResult r = q.planner->Plan(q.start, q.goal, limits);
@@ -239,6 +250,7 @@ int Run(int argc, char** argv) {
     std::vector<double> cold, warm, expansions, length, reversals;
     double states = 0.0;
     int n = 0, ok = 0;
+    if (!only.empty() && ("," + only + ",").find("," + name + ",") == std::string::npos) continue;
     for (size_t i = 0; i < requests.size(); ++i) {
       if (requests[i].scenario != name) continue;
       const Outcome& o = outcomes[i];

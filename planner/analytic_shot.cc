@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace minenav {
 namespace {
@@ -37,17 +38,29 @@ Eigen::Vector2d Centre(const Pose2& p, int side, double r) {
   return {p.x - side * r * std::sin(p.theta), p.y + side * r * std::cos(p.theta)};
 }
 
-// A forward Dubins CSC word (side1, side2: +1 L, -1 R) from a to b; empty if it does not exist.
-std::vector<MotionPiece> DubinsCsc(const Pose2& a, const Pose2& b, int side1, int side2, double r) {
+// The parts of a forward Dubins CSC word (side1, side2: +1 L, -1 R) from a to b: the first
+// arc's and the last arc's turn (rad, in [0, 2 pi)) and the straight between (m); false if
+// the word does not exist.
+bool DubinsCscParts(const Pose2& a, const Pose2& b, int side1, int side2, double r, double* turn1, double* straight,
+                    double* turn2) {
   const Eigen::Vector2d c1 = Centre(a, side1, r), c2 = Centre(b, side2, r), d = c2 - c1;
   const double dist = d.norm(), phi = std::atan2(d.y(), d.x());
-  double straight = dist, psi = phi;  // tangent heading
+  *straight = dist;
+  double psi = phi;  // tangent heading
   if (side1 != side2) {
-    if (dist < 2.0 * r) return {};
-    straight = std::sqrt(dist * dist - 4.0 * r * r);
-    psi = phi - side2 * std::atan2(2.0 * r, straight);  // LSR: +, RSL: -
+    if (dist < 2.0 * r) return false;
+    *straight = std::sqrt(dist * dist - 4.0 * r * r);
+    psi = phi - side2 * std::atan2(2.0 * r, *straight);  // LSR: +, RSL: -
   }
-  const double turn1 = Mod2Pi(side1 * (psi - a.theta)), turn2 = Mod2Pi(side2 * (b.theta - psi));
+  *turn1 = Mod2Pi(side1 * (psi - a.theta));
+  *turn2 = Mod2Pi(side2 * (b.theta - psi));
+  return true;
+}
+
+// A forward Dubins CSC word from a to b; empty if it does not exist.
+std::vector<MotionPiece> DubinsCsc(const Pose2& a, const Pose2& b, int side1, int side2, double r) {
+  double turn1 = 0.0, straight = 0.0, turn2 = 0.0;
+  if (!DubinsCscParts(a, b, side1, side2, r, &turn1, &straight, &turn2)) return {};
   std::vector<MotionPiece> p;
   const Motion arc1 = side1 > 0 ? Motion::kArcLeft : Motion::kArcRight;
   const Motion arc2 = side2 > 0 ? Motion::kArcLeft : Motion::kArcRight;
@@ -107,6 +120,47 @@ std::vector<AnalyticShot> AnalyticShots(const Pose2& from, const Pose2& to, doub
   }
   std::sort(shots.begin(), shots.end(), [](const AnalyticShot& a, const AnalyticShot& b) { return a.cost < b.cost; });
   return shots;
+}
+
+double CheapestShotCost(const Pose2& from, const Pose2& to, double radius, const MotionCosts& costs,
+                        int previous_direction) {
+  // The costs of AnalyticShots' words without building them (PieceCost's rules: a metre
+  // reversed costs reverse_factor, a turn in place turn_in_place_per_rad per radian, the
+  // first driven piece against previous_direction one direction_change; pieces under
+  // 1e-12 are left out).
+  const auto drive = [&](double length, int direction) {
+    if (length < 1e-12) return 0.0;
+    const double change = previous_direction != 0 && direction != previous_direction ? costs.direction_change : 0.0;
+    return length * (direction < 0 ? costs.reverse_factor : 1.0) + change;
+  };
+  const auto turn = [&](double a) { return std::abs(a) < 1e-12 ? 0.0 : costs.turn_in_place_per_rad * std::abs(a); };
+  double best = std::numeric_limits<double>::infinity();
+  const double d = TranslationDistance(from, to);
+  if (d < 1e-12) {
+    best = turn(NormalizeAngle(to.theta - from.theta));
+  } else {
+    for (const bool reverse : {false, true}) {
+      const double heading = std::atan2(to.y - from.y, to.x - from.x) + (reverse ? kPi : 0.0);
+      best = std::min(best, turn(NormalizeAngle(heading - from.theta)) + drive(d, reverse ? -1 : 1) +
+                                turn(NormalizeAngle(to.theta - heading)));
+    }
+  }
+  const Pose2 from_turned(from.x, from.y, NormalizeAngle(from.theta + kPi));
+  const Pose2 to_turned(to.x, to.y, NormalizeAngle(to.theta + kPi));
+  for (const int s1 : {1, -1})
+    for (const int s2 : {1, -1})
+      for (const int direction : {1, -1}) {
+        double t1 = 0.0, straight = 0.0, t2 = 0.0;
+        if (!DubinsCscParts(direction > 0 ? from : from_turned, direction > 0 ? to : to_turned, s1, s2, radius, &t1,
+                            &straight, &t2))
+          continue;
+        const double a1 = radius * t1, a2 = radius * t2;
+        // The direction change is paid once, on the first piece driven.
+        const double length = (a1 < 1e-12 ? 0.0 : a1) + (straight < 1e-12 ? 0.0 : straight) + (a2 < 1e-12 ? 0.0 : a2);
+        if (length < 1e-12) continue;  // an empty word: AnalyticShots leaves it out unless from == to
+        best = std::min(best, drive(length, direction));
+      }
+  return best;
 }
 
 }  // namespace minenav

@@ -27,4 +27,10 @@ struct AnalyticShot {
 std::vector<AnalyticShot> AnalyticShots(const Pose2& from, const Pose2& to, double radius, const MotionCosts& costs,
                                         int previous_direction = 0);
 
+// The cost of the cheapest of those shots (AnalyticShots(...).front().cost but for a word
+// AnalyticShots drops by rounding), without building them: the search's heuristic. Infinity
+// when there is none.
+double CheapestShotCost(const Pose2& from, const Pose2& to, double radius, const MotionCosts& costs,
+                        int previous_direction = 0);
+
 }  // namespace minenav

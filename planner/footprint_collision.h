@@ -11,10 +11,12 @@
 //             the polygon or within margin of its boundary;
 //   otherwise the exact polygon-against-segment test against the walls near the pose
 //             (common/segment_index.h): a wall end inside the polygon, or a wall within margin
-//             of an edge, is a collision.
+//             of an edge, is a collision; when free, the least distance measured less the
+//             margin is the spare (capped), so the sweeps skip poses near walls too.
 // Both field decisions are implied by the exact test's answer, so the field changes the time
 // a check takes, never its result (planner_test checks that against brute force).
 
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -48,7 +50,8 @@ struct Disc {
 std::vector<Disc> DiscCover(const Footprint& footprint, int count);
 
 // The result of one check: collides, or free with `spare` m to spare: every point of the
-// polygon may move up to `spare` and stay free (0 when the exact test decided).
+// polygon may move up to `spare` and stay free (from the discs' field values, or the exact
+// test's distance to the walls near the polygon, capped).
 struct PoseCheck {
   bool collides = false;
   double spare = 0.0;
@@ -65,7 +68,12 @@ class FootprintCollisionChecker {
   // The same with the heading's cosine and sine given (the planner's precomputed sweeps).
   PoseCheck Check(const Pose2& pose, double cos_theta, double sin_theta) const;
   // The exact test alone (no field), for tests and for poses the field does not cover.
-  bool CollidesExactly(const Pose2& pose) const;
+  bool CollidesExactly(const Pose2& pose) const { return ExactSpare(pose, std::cos(pose.theta), std::sin(pose.theta)) < 0.0; }
+  // The exact test with its spare: -1 in collision, else the least distance from the polygon
+  // to the walls less the margin, capped at kExactSpareCap (walls farther than margin + cap
+  // from the polygon's box are not measured).
+  double ExactSpare(const Pose2& pose, double cos_theta, double sin_theta) const;
+  static constexpr double kExactSpareCap = 0.3;  // m
 
   const Footprint& footprint() const { return footprint_; }
   const std::vector<Disc>& discs() const { return discs_; }
@@ -81,8 +89,8 @@ class FootprintCollisionChecker {
   double margin_, inscribed_, circumscribed_;
   std::vector<Disc> discs_;
   std::vector<Disc> inside_;  // points inside the polygon, radius = their distance to its boundary
+  Eigen::Vector2d box_lo_, box_hi_;  // the polygon's bounding box (vehicle frame)
   mutable CollisionCounters counters_;
-  mutable std::vector<Eigen::Vector2d> world_;  // the polygon at the pose being tested
 };
 
 }  // namespace minenav

@@ -98,10 +98,13 @@ std::array<MotionPiece, kPrimitives> Primitives(double r, double bin) {
 // Heading bins each primitive turns.
 constexpr int kHeadingChange[kPrimitives] = {0, 0, 1, -1, -1, 1, 1, -1};
 
+// The open list's order: least f first; among equal f (within 1e-9) the deeper node, larger
+// g (Nav2 Smac's tie-break: along a corridor f is nearly constant, and without it the search
+// widens over the whole plateau instead of following it).
 struct OpenEntry {
-  double f;
+  double f, g;
   int32_t node;
-  bool operator<(const OpenEntry& o) const { return f > o.f; }
+  bool operator<(const OpenEntry& o) const { return f > o.f + 1e-9 || (f > o.f - 1e-9 && g < o.g); }
 };
 
 }  // namespace
@@ -117,6 +120,7 @@ std::string ValidateOptions(const Se2PlannerOptions& o) {
            " m) must leave its xy cell: make xy_resolution smaller than step / sqrt(2)";
   if (!(o.collision_step > 0.0)) return "collision_step must be > 0";
   if (o.analytic_shot_interval < 1) return "analytic_shot_interval must be >= 1";
+  if (!(o.analytic_shot_max_cost_ratio >= 1.0)) return "analytic_shot_max_cost_ratio must be >= 1";
   if (o.collision_discs < 1 || o.collision_discs > 64) return "collision_discs must be in [1, 64]";
   if (o.cached_goals < 1 || o.cached_goals > 64) return "cached_goals must be in [1, 64]";
   return "";
@@ -139,6 +143,8 @@ void DeclareOptions(OptionScope scope, Se2PlannerOptions& o) {
   scope.AddInt("analytic_shot_interval", &o.analytic_shot_interval, "expansions between analytic shots", 1, 1000000);
   scope.AddDouble("analytic_shot_max_length", &o.analytic_shot_max_length, "m", "longer analytic shots are not tried",
                   0.0, 1e6);
+  scope.AddDouble("analytic_shot_max_cost_ratio", &o.analytic_shot_max_cost_ratio, "",
+                  "shots dearer than this times the cheapest are not tried", 1.0, 1e6);
   DeclareOptions(scope.Nested("costs"), o.costs);
 }
 
@@ -303,8 +309,8 @@ Se2PlanResult Se2Planner::Plan(const Pose2& start_in, const Pose2& goal_in, cons
     if (d2 == kInf) return kInf;
     double free_space = FreeSpaceLowerBound(p, goal, r, costs);
     if (options_.shot_heuristic) {
-      const std::vector<AnalyticShot> shots = AnalyticShots(p, goal, r, costs, direction);
-      if (!shots.empty()) free_space = std::max(free_space, shots.front().cost);
+      const double shot = CheapestShotCost(p, goal, r, costs, direction);
+      if (shot < kInf) free_space = std::max(free_space, shot);
     }
     return std::max(d2, free_space);
   };
@@ -331,7 +337,7 @@ Se2PlanResult Se2Planner::Plan(const Pose2& start_in, const Pose2& goal_in, cons
   const PoseCheck at_start = checker_->Check(start);
   nodes.push_back({start, 0.0, -1, Motion::kForward, 0.0, 0, false, 0, at_start.spare});
   best[key(start.x, start.y, 0)] = 0;
-  open.push({heuristic(start, 0), 0});
+  open.push({heuristic(start, 0), 0.0, 0});
 
   const auto path_to = [&](int32_t n, const std::vector<MotionPiece>& tail) {
     std::vector<MotionPiece> pieces;
@@ -366,7 +372,9 @@ Se2PlanResult Se2Planner::Plan(const Pose2& start_in, const Pose2& goal_in, cons
     // The analytic shot: the cheapest obstacle-free shots that are short enough, first free one wins.
     if (result.expansions % options_.analytic_shot_interval == 1 || options_.analytic_shot_interval == 1 ||
         key(pose.x, pose.y, heading) == goal_key) {
-      for (const AnalyticShot& shot : AnalyticShots(pose, goal, r, costs, direction)) {
+      const std::vector<AnalyticShot> shots = AnalyticShots(pose, goal, r, costs, direction);
+      for (const AnalyticShot& shot : shots) {
+        if (shot.cost > options_.analytic_shot_max_cost_ratio * shots.front().cost) break;  // cheapest first
         double length = 0.0;
         for (const MotionPiece& p : shot.pieces) length += p.motion == Motion::kTurnInPlace ? 0.0 : p.amount;
         if (length > options_.analytic_shot_max_length) continue;
@@ -416,7 +424,7 @@ Se2PlanResult Se2Planner::Plan(const Pose2& start_in, const Pose2& goal_in, cons
       nodes.push_back({next, ng, e.node, primitive.motion, primitive.amount, next_direction, false,
                        static_cast<int16_t>(sweep.end_heading), next_spare});
       best[k] = index;
-      open.push({ng + h, index});
+      open.push({ng + h, ng, index});
     }
   }
   result.states = static_cast<int64_t>(nodes.size());

@@ -56,7 +56,10 @@ struct Se2PlannerOptions {
   bool shot_heuristic = true;
   int cached_goals = 4;           // goals whose 2-D heuristic is kept between requests. Default 4.
   int analytic_shot_interval = 5;       // expansions between analytic shots (1 = every one). Default 5.
-  double analytic_shot_max_length = 30.0;  // m, longer shots are not tried. Default 30.
+  double analytic_shot_max_length = 150.0;  // m, longer shots are not tried. Default 150.
+  // Shots dearer than this times the cheapest shot are not tried (loops and detours: they
+  // would cost collision checks and rarely win). Default 1.2.
+  double analytic_shot_max_cost_ratio = 1.2;
   MotionCosts costs;
 };
 

@@ -108,6 +108,27 @@ TEST(AnalyticShotTest, EveryShotIsAFeasiblePathToTheGoal) {
   EXPECT_GT(csc, 300);  // the Dubins words exist for most pairs this far apart
 }
 
+TEST(AnalyticShotTest, TheCheapestShotCostIsTheCheapestShotsCost) {
+  // The heuristic's cost-only shot against the built, traced and sorted shots: random pairs,
+  // near pairs (loops, empty pieces) and the same position, after each previous direction.
+  std::mt19937 rng(8);
+  std::uniform_real_distribution<double> u(-20, 20), near(-1, 1), a(-kPi, kPi);
+  MotionCosts costs;
+  costs.turn_in_place_per_rad = 1.3;
+  for (int trial = 0; trial < 600; ++trial) {
+    const Pose2 from(u(rng), u(rng), a(rng));
+    const Pose2 to = trial % 3 == 0   ? Pose2(u(rng), u(rng), a(rng))
+                     : trial % 3 == 1 ? Pose2(from.x + near(rng), from.y + near(rng), a(rng))
+                                      : Pose2(from.x, from.y, trial % 2 ? from.theta : a(rng));
+    for (const int previous : {0, 1, -1}) {
+      const auto shots = AnalyticShots(from, to, 4.0, costs, previous);
+      ASSERT_FALSE(shots.empty());
+      EXPECT_NEAR(CheapestShotCost(from, to, 4.0, costs, previous), shots.front().cost, 1e-9)
+          << from << " -> " << to << " after " << previous;
+    }
+  }
+}
+
 TEST(FootprintTest, RectangleRadiiAndValidation) {
   const Footprint f = Footprint::Rectangle(3.3, 10.0);
   EXPECT_NEAR(InscribedRadius(f), 1.65, 1e-12);
@@ -146,6 +167,47 @@ TEST(FootprintCollisionTest, FieldAndExactTestAgreeWithBruteForce) {
   }
   EXPECT_GT(free, 50);
   EXPECT_GT(blocked, 1000);
+}
+
+TEST(FootprintCollisionTest, TheSpareOfEveryCheckHoldsAgainstBruteForce) {
+  // A check that says free with s m to spare: every pose whose points all move at most s
+  // (a translation t and a turn d about the origin with |t| + circumscribed |d| <= s) is free
+  // by brute force with the margin. Poses near the walls (the exact test's spare) and in the
+  // open (the discs').
+  std::vector<Segment> walls = planner_test::Crossing(6.0, 20.0);
+  walls.push_back({2.0, 8.0, 2.5, 9.0});
+  planner_test::AddBox(walls, -20, -20, 20, 20);
+  const double margin = 0.075;
+  const Footprint miner = Footprint::Rectangle(3.3, 10.0);
+  const StaticSegmentIndex index(walls);
+  const GridFrame frame = GridFrame::Covering(Eigen::Vector2d(-20, -20), Eigen::Vector2d(20, 20), 0.2, 0.0);
+  const ClearanceField field(walls, frame, 8.0);
+  const FootprintCollisionChecker checker(index, field, miner, margin);
+  testing::PathCheckSettings st;
+  st.polygon = miner.vertices;
+  st.clearance = margin;
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> along(-12, 12), across(-1.5, 1.5), a(-0.1, 0.1), unit(0, 1), dir(-kPi, kPi);
+  int exact_spares = 0, moved = 0;
+  for (int i = 0; i < 3000; ++i) {
+    // In one of the four arms, roughly along it.
+    const int arm = i % 4;
+    Pose2 p = arm < 2 ? Pose2(along(rng), across(rng), a(rng) + arm * kPi) : Pose2(across(rng), along(rng), a(rng) + kPi / 2 + arm * kPi);
+    const int64_t exact_before = checker.counters().exact_tests;
+    const PoseCheck c = checker.Check(p);
+    if (c.collides || c.spare <= 0.0) continue;
+    exact_spares += checker.counters().exact_tests > exact_before;
+    for (int k = 0; k < 5; ++k) {
+      const double share = unit(rng), heading = dir(rng);
+      const double t = share * c.spare, d = (1.0 - share) * c.spare / checker.circumscribed_radius();
+      const Pose2 q(p.x + t * std::cos(heading), p.y + t * std::sin(heading), p.theta + (unit(rng) < 0.5 ? d : -d));
+      ASSERT_TRUE(BruteForceFree(walls, q, st, 20.0)) << p << " spare " << c.spare << " moved to " << q;
+      ++moved;
+    }
+  }
+  EXPECT_GT(moved, 2000);
+  EXPECT_GT(checker.counters().exact_tests, 300);
+  EXPECT_GT(exact_spares, 100);
 }
 
 TEST(FootprintCollisionTest, DiscCoverHoldsThePolygonAndDecidesMostPosesInAnEntry) {
@@ -310,6 +372,61 @@ TEST(Se2PlannerTest, TurnsACornerWhereTurningInPlaceDoesNotFit) {
   EXPECT_TRUE(report.ok) << report.problem;
   EXPECT_GT(r.path.Length(), 16.0);  // at least the straight-line distance of 16.97 m, less rounding
   EXPECT_GT(r.path.Length(), 0.9 * std::hypot(12.0, 12.0));
+}
+
+// The largest clearance (m) of the miner at heading theta anywhere in a crossing of two
+// `width` entries: the independent checker's distance at every centre of a 1 cm grid over
+// the crossing (the walls' distance is 1-Lipschitz in the centre: the grid loses < 0.01 m).
+double LargestClearanceInCrossing(double width, double theta) {
+  const std::vector<Segment> map = planner_test::Crossing(width, 20.0);
+  testing::PathCheckSettings st;
+  st.polygon = Footprint::Rectangle(3.3, 10.0).vertices;
+  double best = -1.0;
+  for (double x = -3.0; x <= 3.0; x += 0.01)
+    for (double y = -3.0; y <= 3.0; y += 0.01) {
+      const auto report = testing::CheckPath(map, Pose2(x, y, theta), {}, st);
+      if (report.ok) best = std::max(best, report.min_clearance);
+    }
+  return best;
+}
+
+TEST(Se2PlannerTest, AMinerTurningInA6mCrossingHasCentimetresAt45Degrees) {
+  // Any turn from an entry into a crosscut passes heading 45 deg (mod 90); in a 6 m entry
+  // the miner at 45 deg spans 10 sin 45 + 3.3 cos 45 = 9.4 m across, so that pose is in a
+  // crossing. There, in the frame along (u) and across (v) the miner's axis through the
+  // crossing's centre, the pillar corners are wedges with tips 3 sqrt 2 = 4.24 m out: the
+  // miner's end corners (u = +-5, v = v0 - 1.65) clear the wedges of the pillars it points
+  // at by (v0 - 2.41) / sqrt 2, its long side (v = v0 + 1.65) the third corner's tip by
+  // 2.59 - v0: at best (v0 = 2.52) 0.077 m. The planner keeps clearance + collision_step / 2
+  // (0.05 + 0.025 m in the bench): 2 mm of room before the walls' jitter (up to 0.2 m). In
+  // 6.5 m entries the same construction gives 0.37 m.
+  const double at_6 = LargestClearanceInCrossing(6.0, kPi / 4);
+  EXPECT_GT(at_6, 0.06);
+  EXPECT_LT(at_6, 0.08);
+  const double at_65 = LargestClearanceInCrossing(6.5, kPi / 4);
+  EXPECT_GT(at_65, 0.35);
+  EXPECT_LT(at_65, 0.38);
+}
+
+TEST(Se2PlannerTest, TurnsAndBacksIntoA65mCrosscutWithTheBenchClearanceWithinABoundOfExpansions) {
+  // With 6.5 m entries (0.37 m to spare at 45 deg, above) and the bench's 0.05 m clearance
+  // the corner turns left and right are found in a few hundred expansions (61 measured), the
+  // backing into the crosscut facing back (a cusp in the crossing) in under 40,000 (26,281).
+  const std::vector<Segment> map = planner_test::Crossing(6.5, 20.0);
+  Se2PlannerOptions o;
+  o.clearance = 0.05;
+  const Se2Planner planner(map, Footprint::Rectangle(3.3, 10.0), o);
+  SearchLimits limits;
+  const Pose2 s(0, -12, kPi / 2);
+  for (const auto& [g, bound] : {std::pair{Pose2(12, 0, 0.0), 500}, std::pair{Pose2(-12, 0, kPi), 500},
+                                 std::pair{Pose2(12, 0, kPi), 40000}}) {
+    limits.max_expansions = bound;
+    const Se2PlanResult r = planner.Plan(s, g, limits);
+    ASSERT_EQ(r.status, SearchStatus::kFound) << r.reason;
+    const auto report = testing::CheckPath(map, s, AsChecked(r.path), CheckerFor(planner));
+    EXPECT_TRUE(report.ok) << report.problem;
+    EXPECT_GT(r.path.Length(), 16.0);
+  }
 }
 
 TEST(Se2PlannerTest, BacksIntoTheCrosscutWithAMultiPointManeuver) {
