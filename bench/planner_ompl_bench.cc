@@ -32,6 +32,7 @@
 //   planner_ompl_bench [--seeds 2] [--instances 4] [--deadline 2] [--ompl_time 1] [--json_out FILE]
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -234,6 +235,11 @@ OmplOutcome RunOmpl(const std::string& name, const Se2Planner& planner, const st
   start->setYaw(q.start.theta);
   goal->setXY(q.goal.x, q.goal.y);
   goal->setYaw(q.goal.theta);
+  // OMPL's headings are in [-pi, pi), ours in (-pi, pi]: a heading of pi is out of its bounds.
+  space->enforceBounds(start.get());
+  space->enforceBounds(goal.get());
+  if (!si->isValid(start.get()) || !si->isValid(goal.get()))
+    std::fprintf(stderr, "%s: the start or the goal is not valid for OMPL\n", name.c_str());
   auto pdef = std::make_shared<ob::ProblemDefinition>(si);
   pdef->setStartAndGoalStates(start, goal, 1e-3);
   pdef->setOptimizationObjective(std::make_shared<ob::PathLengthOptimizationObjective>(si));
@@ -277,7 +283,11 @@ OmplOutcome RunOmpl(const std::string& name, const Se2Planner& planner, const st
   t0 = bench::Now();
   p->setProblemDefinition(pdef);
   p->setup();
-  const ob::PlannerStatus status = p->solve(ob::PlannerTerminationCondition([&] { return bench::Now() - t0 > run_s; }));
+  // Thread CPU time, and a wall-clock cap: a planner that waits (BIT* sleeps while it has no
+  // valid goal) spends no CPU, and the bench must not hang.
+  const auto wall_end = std::chrono::steady_clock::now() + std::chrono::duration<double>(10.0 * run_s + 10.0);
+  const ob::PlannerStatus status = p->solve(ob::PlannerTerminationCondition(
+      [&] { return bench::Now() - t0 > run_s || std::chrono::steady_clock::now() > wall_end; }));
   o.ran_s = bench::Now() - t0;
   // An exact solution the callback did not report (it should not happen): record it at the end.
   if (status == ob::PlannerStatus::EXACT_SOLUTION && pdef->hasExactSolution() &&
