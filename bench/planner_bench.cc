@@ -1,17 +1,9 @@
 // The path planner (planner/README.md, issue 13) on the synthetic room-and-pillar mine and the
 // Moving AI grids.
 //
-// SE(2) section: a 4 x 6 pillar panel (12 m pillars, 6 m entries, walls jittered by the
-// fractal midpoint displacement of sim/mine_generator.h), the default miner (3.3 x 10 m,
-// turning radius 4 m), 0.1 m clearance. Faces close some entries between two crossings (a
-// wall across the entry, as at a development heading). Scenarios, each on every seed's mine:
-//   box_cut    from 10-18 m back in the entry up to the face (nose 0.6 m from it), the face
-//              a wall across the entry 1 m before the next crossing (an 11 m dead end);
-//   slab_cut   at the face, shifted sideways across the entry (one side to the other);
-//   back_out   from the face backwards round the corner into the crosscut behind;
-//   turn       from an entry 12 m before a crossing into the crosscut, 12 m past it;
-//   long_entry along a whole entry (101 m), lateral offset and heading changed at the ends;
-//   long       across the section, corner to corner (> 100 m straight-line distance).
+// SE(2) section: the scenarios of bench/planner_scenarios.h (box_cut, slab_cut, back_out, turn,
+// long_entry, long on mines of 4 x 6 pillars), the default miner (3.3 x 10 m, turning radius
+// 4 m).
 // Each request is planned twice: "cold" (the first request to that goal) and "warm" (the same
 // request again: what the planner keeps between requests to one goal). Times are thread CPU
 // seconds (bench_util.h). Every path is checked by the independent checker
@@ -29,17 +21,16 @@
 #include <filesystem>
 #include <map>
 #include <nlohmann/json.hpp>
-#include <random>
 #include <string>
 #include <vector>
 
 #include "bench/bench_util.h"
+#include "bench/planner_scenarios.h"
 #include "common/config.h"
 #include "planner/grid_astar.h"
 #include "planner/movingai.h"
 #include "planner/se2_planner.h"
 #include "planner/testing/path_checker.h"
-#include "sim/mine_generator.h"
 
 namespace {
 
@@ -50,9 +41,6 @@ using minenav::Se2PlanResult;
 using minenav::Segment;
 namespace bench = minenav::bench;
 
-constexpr double kPillar = 12.0;
-// The entries' width (--room_width, default 6 m) and the pillar pitch.
-double room = 6.0, pitch = kPillar + room;
 constexpr double kBytesPerState = 80.0;  // search_limits.h: about 80 bytes per stored SE(2) state
 
 double Percentile(std::vector<double> v, double q) {
@@ -63,11 +51,7 @@ double Percentile(std::vector<double> v, double q) {
   return v[lo] + (at - static_cast<double>(lo)) * (v[hi] - v[lo]);
 }
 
-struct Request {
-  std::string scenario;
-  const Se2Planner* planner = nullptr;
-  Pose2 start, goal;
-};
+using Request = bench::PlannerRequest;
 
 struct Outcome {
   bool found = false, checked = false;
@@ -77,24 +61,9 @@ struct Outcome {
   std::string status;
 };
 
-// Entry k (0 = south boundary entry) centre line y; crosscut c centre line x.
-double EntryY(int k) { return 0.5 * room + k * pitch; }
-double CrosscutX(int c) { return 0.5 * room + c * pitch; }
-// A face across an entry 1 m before the crossing east of pillar column c: a dead end 11 m long.
-double FaceX(int c) { return room + c * pitch + kPillar - 1.0; }
-
-// The first free pose from `p` moving by `step` (at most `tries` times); p itself if none.
-Pose2 NudgeFree(const Se2Planner& planner, Pose2 p, const Eigen::Vector2d& step, int tries) {
-  for (int i = 0; i < tries && !planner.PoseFree(p); ++i) {
-    p.x += step.x();
-    p.y += step.y();
-  }
-  return p;
-}
-
 int Run(int argc, char** argv) {
   int seeds = 3, instances = 4;
-  double deadline = 10.0, displacement = 0.1, clearance = 0.05;
+  double deadline = 10.0, displacement = 0.1, clearance = 0.05, room = 6.0;
   bool grid = true, shot_heuristic = true;
   std::string json_out, only;
   minenav::Se2PlannerOptions options;
@@ -114,7 +83,6 @@ int Run(int argc, char** argv) {
   schema.AddString("only", &only, "plan only the scenarios whose names are in this comma list ('' = all)");
   minenav::DeclareOptions(minenav::OptionScope(schema).Nested("planner"), options);  // planner.clearance and planner.shot_heuristic: see --clearance, --shot_heuristic
   if (schema.Parse(argc, argv) == minenav::ParseOutcome::kExit) return 0;
-  pitch = kPillar + room;
 
   const minenav::Footprint miner = minenav::Footprint::Rectangle(3.3, 10.0);
   options.clearance = clearance;
@@ -124,75 +92,11 @@ int Run(int argc, char** argv) {
   double stop_at = 0.0;
   limits.stop_requested = [&stop_at] { return bench::Now() > stop_at; };
 
-  std::vector<std::unique_ptr<Se2Planner>> planners;
-  std::vector<std::vector<Segment>> maps;
-  std::vector<Request> requests;
-  std::vector<double> setup_s;
-  for (int seed = 1; seed <= seeds; ++seed) {
-    minenav::MineOptions mine;
-    mine.pillar_rows = 4;
-    mine.pillar_cols = 6;
-    mine.pillar_size = kPillar;
-    mine.room_width = room;
-    mine.midpoint_displacement = displacement;
-    mine.seed = static_cast<uint64_t>(seed);
-    const std::vector<Segment> plain = minenav::GenerateRoomAndPillarMine(mine);
-    const Eigen::Vector2d size = minenav::MinePanelSize(mine);
-    std::mt19937 rng(static_cast<unsigned>(seed));
-    // Faces: across entry k beside pillar column c (entries 0..3, so the crosscut behind the
-    // dead end has a north arm to back into).
-    std::vector<std::pair<int, int>> faces;
-    for (int i = 0; i < instances; ++i) faces.push_back({i % 4, 1 + static_cast<int>(rng() % 5)});
-    std::vector<Segment> with_faces = plain;
-    for (const auto& [k, c] : faces) {
-      const double xf = FaceX(c);
-      with_faces.push_back({xf, k * pitch - 1.0, xf, k * pitch + room + 1.0});
-    }
-    for (const std::vector<Segment>* m : {&plain, static_cast<const std::vector<Segment>*>(&with_faces)}) {
-      const double t0 = bench::Now();
-      planners.push_back(std::make_unique<Se2Planner>(*m, miner, options));
-      setup_s.push_back(bench::Now() - t0);
-      maps.push_back(*m);
-      if (!planners.back()->setup_error().empty())
-        throw std::runtime_error("planner setup: " + planners.back()->setup_error());
-    }
-    const Se2Planner& open = *planners[planners.size() - 2];
-    const Se2Planner& faced = *planners.back();
-    std::uniform_real_distribution<double> back(10.0, 18.0), lateral(-0.4, 0.4), yaw(-0.08, 0.08);
-    for (const auto& [k, c] : faces) {
-      const double xf = FaceX(c), y = EntryY(k);
-      const Eigen::Vector2d away(-0.1, 0.0);
-      const Pose2 at_face = NudgeFree(faced, Pose2(xf - 5.6, y, 0.0), away, 20);
-      const double shift = 0.7;
-      const Pose2 left = NudgeFree(faced, Pose2(xf - 5.6, y + shift, 0.0), away, 20);
-      const Pose2 right = NudgeFree(faced, Pose2(xf - 5.6, y - shift, 0.0), away, 20);
-      const Pose2 behind(std::max(5.5, at_face.x - back(rng)), y + lateral(rng), yaw(rng));
-      requests.push_back({"box_cut", &faced, behind, at_face});
-      requests.push_back({"slab_cut", &faced, left, right});
-      // Backing out: rear first round the corner into the north arm of the crosscut behind.
-      requests.push_back({"back_out", &faced, at_face, Pose2(CrosscutX(c), y + 12.0, -kPi / 2)});
-    }
-    // Turns from an entry into a crosscut at inner crossings, left or right.
-    for (int i = 0; i < instances; ++i) {
-      const int k = 1 + i % 3, c = 1 + static_cast<int>(rng() % 5);
-      const double side = i % 2 == 0 ? 1.0 : -1.0;
-      requests.push_back({"turn", &open, Pose2(CrosscutX(c) - 12.0, EntryY(k) + lateral(rng), yaw(rng)),
-                          Pose2(CrosscutX(c), EntryY(k) + side * 12.0, side * kPi / 2)});
-    }
-    // Along a whole entry, > 100 m, with a lateral offset and a heading change at the ends.
-    for (int i = 0; i < instances; ++i) {
-      const int k = i % 5;
-      requests.push_back({"long_entry", &open, Pose2(6.5, EntryY(k) + lateral(rng), yaw(rng)),
-                          Pose2(size.x() - 6.5, EntryY(k) + lateral(rng), yaw(rng))});
-    }
-    // Across the section, corner to corner.
-    for (int i = 0; i < instances; ++i) {
-      const bool flip = i % 2 == 1;
-      const Pose2 a(10.0 + lateral(rng), EntryY(0) + lateral(rng), 0.0);
-      const Pose2 b(size.x() - 10.0 + lateral(rng), EntryY(4) + lateral(rng), i % 4 < 2 ? 0.0 : kPi);
-      requests.push_back({"long", &open, flip ? b : a, flip ? a : b});
-    }
-  }
+  bench::PlannerScenarios mine = bench::BuildPlannerScenarios(seeds, instances, displacement, miner, options, room);
+  const std::vector<std::unique_ptr<Se2Planner>>& planners = mine.planners;
+  const std::vector<std::vector<Segment>>& maps = mine.maps;
+  const std::vector<Request>& requests = mine.requests;
+  const std::vector<double>& setup_s = mine.setup_s;
 
   // Plan every request cold, then all again warm (same goal, same request).
   std::vector<Outcome> outcomes(requests.size());

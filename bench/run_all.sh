@@ -10,6 +10,9 @@
 #   --carmen     also the CARMEN logs (mapper_carmen_bench: Intel and Freiburg 079, about
 #                15 minutes; needs the datasets in ../shared/datasets)
 #   --only LIST  just these benches (names as in the table below)
+# planner_ompl_bench (the planner against OMPL) needs Debian's libompl-dev: run_all.sh installs
+# it with apt-get when missing (scripts/common.sh minenav_install_bench_deps); CMake builds that
+# bench only where OMPL is found, so after a first install reconfigure and build it.
 # Exit status: 0 when every bench ran, else the number of benches that failed.
 set -uo pipefail
 
@@ -24,7 +27,7 @@ while [[ $# -gt 0 ]]; do
     --out) out="$2"; shift 2 ;;
     --carmen) carmen=1; shift ;;
     --only) only="$2"; shift 2 ;;
-    -h|--help) sed -n '2,14p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '2,16p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "run_all.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
   esac
 done
@@ -44,9 +47,16 @@ benches=(
   "mapper_scale_bench|"
   "mapper_dynamic_bench|"
   "planner_bench|"
+  "planner_ompl_bench|"
 )
 if [[ $carmen -eq 1 ]]; then
   benches+=("mapper_carmen_bench_intel|--only intel" "mapper_carmen_bench_fr079|--only fr079")
+fi
+
+# OMPL for planner_ompl_bench (in a subshell: common.sh sets -e).
+if [[ -z "$only" || ",$only," == *",planner_ompl_bench,"* ]]; then
+  ( source "$here/scripts/common.sh" && minenav_install_bench_deps ) ||
+    echo "run_all.sh: could not install OMPL (scripts/common.sh minenav_install_bench_deps)" >&2
 fi
 
 stopped=0
@@ -60,6 +70,8 @@ for entry in "${benches[@]}"; do
   [[ "$name" == mapper_carmen_bench_* ]] && program=mapper_carmen_bench
   if [[ ! -x "$bin/$program" ]]; then
     echo "== $name: $bin/$program is missing" >&2
+    [[ "$name" == planner_ompl_bench ]] &&
+      echo "   (built only where CMake finds OMPL: reconfigure and build the target planner_ompl_bench)" >&2
     failed=$((failed + 1))
     continue
   fi

@@ -9,9 +9,10 @@ MINENAV_JOBS="${MINENAV_JOBS:-$(nproc)}"
 MINENAV_PACKAGES=(build-essential cmake liblcm-dev liblcm-bin libeigen3-dev libgtest-dev
                   libgmock-dev zlib1g-dev libbz2-dev nlohmann-json3-dev iproute2 util-linux python3)
 
-minenav_install_deps() {
+# minenav_install_missing PACKAGE...: apt-get installs those of the Debian packages not installed.
+minenav_install_missing() {
   local missing=()
-  for p in "${MINENAV_PACKAGES[@]}"; do
+  for p in "$@"; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
   done
   if [ ${#missing[@]} -eq 0 ]; then return 0; fi
@@ -21,6 +22,14 @@ minenav_install_deps() {
   $sudo apt-get update -qq
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 }
+
+minenav_install_deps() { minenav_install_missing "${MINENAV_PACKAGES[@]}"; }
+
+# Only for bench/planner_ompl_bench (the planner against OMPL): the build and CI do not need
+# them; CMake builds that bench only when it finds OMPL. Boost's dev packages are the ones
+# OMPL's headers include and its CMake config asks for.
+MINENAV_BENCH_PACKAGES=(libompl-dev libboost-filesystem-dev libboost-system-dev libboost-serialization-dev)
+minenav_install_bench_deps() { minenav_install_missing "${MINENAV_BENCH_PACKAGES[@]}"; }
 
 # minenav_build DIR [cmake args...] [-- targets...]   (no targets: everything)
 minenav_build() {
