@@ -20,6 +20,12 @@ std::string Fixed(double v, int digits = 2) {
   return os.str();
 }
 
+// What the vehicle may go past the end of a planned motion before it stands still: the
+// check ahead covers the rest of the motion plus this, not a full collision_time beyond it
+// (the planner's path ends 5 deg turns and metres-long straights close to walls on purpose).
+constexpr double kDriveOvershoot = 0.05;  // m
+constexpr double kTurnOvershoot = 0.02;   // rad
+
 // The planner's motion for a command: direction d (+1, -1, 0) and yaw sign.
 Motion MotionOf(int direction, double omega) {
   if (direction == 0) return Motion::kTurnInPlace;
@@ -200,36 +206,47 @@ double PathTracker::Progress() const {
   return static_cast<double>(run_) / static_cast<double>(runs_.size());
 }
 
-std::optional<TrackStep> PathTracker::CheckAhead(const Pose2& pose, const TrackStep& step) {
+std::optional<TrackStep> PathTracker::CheckAhead(const Pose2& pose, const TrackStep& step, double left) {
   if (!map_ || step.command.mode == DriveCommand::Mode::kStop) return std::nullopt;
   MotionPiece piece;
   std::string what;
   if (step.command.mode == DriveCommand::Mode::kTurnInPlace) {
     piece.motion = Motion::kTurnInPlace;
-    piece.amount = std::copysign(std::max(options_.collision_min_distance, std::abs(step.command.omega) * options_.collision_time),
-                                 step.command.omega);
+    const double reach = std::max(options_.collision_min_distance, std::abs(step.command.omega) * options_.collision_time);
+    piece.amount = std::copysign(std::min(reach, std::abs(left) + kTurnOvershoot), step.command.omega);
     what = "turning in place " + Fixed(RadToDeg(piece.amount), 1) + " deg";
   } else {
     const int d = step.command.v >= 0 ? 1 : -1;
     piece.motion = MotionOf(d, step.command.omega);
-    piece.amount = std::max(options_.collision_min_distance, std::abs(step.command.v) * options_.collision_time);
+    const double reach = std::max(options_.collision_min_distance, std::abs(step.command.v) * options_.collision_time);
+    piece.amount = std::min(reach, std::max(0.0, left) + kDriveOvershoot);
     piece.radius = IsArc(piece.motion) ? options_.turn_radius : 0.0;
     what = std::string(ToString(piece.motion)) + " " + Fixed(piece.amount) + " m";
   }
   piece.end = PoseAfter(pose, piece.motion, piece.amount, piece.radius);
   if (!map_->PieceCollides(pose, piece)) return std::nullopt;
-  if (IsArc(piece.motion)) {
-    // The arc swings the long body towards a wall: a straight line instead, if that is free
-    // (the next tick corrects again).
-    MotionPiece straight = piece;
-    straight.motion = DriveDirection(piece.motion) > 0 ? Motion::kForward : Motion::kReverse;
-    straight.radius = 0.0;
-    straight.end = PoseAfter(pose, straight.motion, straight.amount, 0.0);
-    if (!map_->PieceCollides(pose, straight)) {
+  if (step.command.mode == DriveCommand::Mode::kVelocity) {
+    // The commanded motion would touch a wall: the other motions of the same direction
+    // (straight, arc left, arc right), the one nearest the pursuit curvature first, if one
+    // is free over the same distance (the next tick corrects again).
+    const int d = DriveDirection(piece.motion);
+    const double speed = std::abs(step.command.v);
+    std::vector<double> curvatures = {0.0, 1.0 / options_.turn_radius, -1.0 / options_.turn_radius};
+    std::sort(curvatures.begin(), curvatures.end(), [&](double a, double b) {
+      return std::abs(a - step.curvature) < std::abs(b - step.curvature);
+    });
+    for (const double k : curvatures) {
+      const double omega = k * speed;
+      if (omega == step.command.omega) continue;
+      MotionPiece other = piece;
+      other.motion = MotionOf(d, omega);
+      other.radius = IsArc(other.motion) ? options_.turn_radius : 0.0;
+      other.end = PoseAfter(pose, other.motion, other.amount, other.radius);
+      if (map_->PieceCollides(pose, other)) continue;
       TrackStep s = step;
-      s.command.omega = 0.0;
-      s.motion = QuantisedMotion::kStraight;
-      s.message = what + " would touch the map: straight instead";
+      s.command.omega = omega;
+      s.motion = k == 0.0 ? QuantisedMotion::kStraight : k > 0 ? QuantisedMotion::kArcLeft : QuantisedMotion::kArcRight;
+      s.message = what + " would touch the map: " + ToString(other.motion) + " instead";
       return s;
     }
   }
@@ -260,7 +277,7 @@ TrackStep PathTracker::Update(const Pose2& pose) {
         if (!aligning_goal_) ++corrections_;
         aligning_goal_ = true;
         TrackStep t = Turn(heading_error, "aligning to the goal heading");
-        if (auto blocked = CheckAhead(pose, t)) return *blocked;
+        if (auto blocked = CheckAhead(pose, t, heading_error)) return *blocked;
         return t;
       }
       const double error = TranslationDistance(pose, goal);
@@ -280,7 +297,7 @@ TrackStep PathTracker::Update(const Pose2& pose) {
         continue;
       }
       TrackStep t = Turn(heading_error, "turn in place of the path");
-      if (auto blocked = CheckAhead(pose, t)) return *blocked;
+      if (auto blocked = CheckAhead(pose, t, heading_error)) return *blocked;
       return t;
     }
     const int before = run_;
@@ -289,7 +306,8 @@ TrackStep PathTracker::Update(const Pose2& pose) {
       // The run ended this tick: one stop at the cusp (or before the goal alignment).
       return Stop("end of run " + std::to_string(run_) + " of " + std::to_string(runs_.size()));
     }
-    if (auto blocked = CheckAhead(pose, step)) return *blocked;
+    if (auto instead = CheckAhead(pose, step, step.left))
+      return *instead;
     return step;
   }
   return Stop(message_);
@@ -340,6 +358,8 @@ TrackStep PathTracker::Drive(const Pose2& pose) {
     s.message = ToString(s.motion);
   }
   s.state = state_;
+  s.curvature = k;
+  s.left = correcting_ ? bearing : p.remaining;
   s.cross_track = p.cross_track;
   s.progress = std::clamp((done_length_ + p.arc_length) / std::max(1e-9, total_length_), 0.0, 1.0);
   return s;

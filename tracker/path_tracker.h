@@ -13,10 +13,12 @@
 //      place towards the goal point until within align_tolerance (a "correction");
 //   4. else the curvature to the goal point one lookahead ahead, quantised;
 //   5. the speed: cruise, regulated (slower on arcs, near walls, approaching the run's end);
-//   6. the commanded motion over collision_time (at least collision_min_distance) is checked
-//      against the map with the planner's collision checker; an arc that would touch a wall
-//      is replaced by the straight line when that is free, else the vehicle stops and the
-//      path is abandoned as blocked, with the reason.
+//   6. the commanded motion over collision_time (at least collision_min_distance, at most
+//      what is left of the run or turn plus a few cm or a degree) is checked
+//      against the map with the planner's collision checker; a motion that would touch a
+//      wall is replaced by another of the same direction (straight, arc left, arc right, the
+//      nearest the pursuit curvature first) when that is free, else the vehicle stops and
+//      the path is abandoned as blocked, with the reason.
 // A turn-in-place run turns to its end heading. After the last run, the heading is aligned
 // to the goal's within heading_tolerance (turning in place, also collision-checked); then the
 // path is done, or failed when the pose ended farther than goal_tolerance from the goal.
@@ -38,7 +40,7 @@
 namespace minenav {
 
 struct PathTrackerOptions {
-  double lookahead = 1.0;               // m, goal point distance along the path
+  double lookahead = 0.6;               // m, goal point distance along the path
   double turn_radius = 4.0;             // m, the miner's one turning radius
   double straight_deadband = 0.02;      // 1/m, |curvature| below which the command is straight
   double turn_in_place_curvature = 1.0; // 1/m, |curvature| above which it turns in place first
@@ -105,6 +107,8 @@ struct TrackStep {
   double cross_track = 0.0;         // m, on driving runs (0 elsewhere)
   double progress = 0.0;            // 0..1 of the path's length and turns
   bool finished_now = false;        // the state became done / failed / blocked this tick
+  double left = 0.0;                // m of the run still to drive (driving runs)
+  double curvature = 0.0;           // 1/m, the pursuit curvature before quantising
 };
 
 class PathTracker {
@@ -133,9 +137,11 @@ class PathTracker {
  private:
   TrackStep Stop(const std::string& message) const;
   TrackStep Finish(TrackState state, const std::string& message);
-  // nullopt when the commanded motion is free; else the step to take instead: straight on
-  // in place of an arc that would touch the map, or the block (stop, path abandoned).
-  std::optional<TrackStep> CheckAhead(const Pose2& pose, const TrackStep& step);
+  // nullopt when the commanded motion is free; else the step to take instead: another
+  // motion of the same direction that is free, or the block (stop, path abandoned).
+  // `left`: what remains of the planned motion (m driving, rad turning); the check covers
+  // min(collision_time of the command, left + a small overshoot).
+  std::optional<TrackStep> CheckAhead(const Pose2& pose, const TrackStep& step, double left);
   TrackStep Turn(double heading_error, const std::string& what);
   TrackStep Drive(const Pose2& pose);
   double Progress() const;

@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <map>
 
 #include "common/angle.h"
@@ -43,7 +44,9 @@ TEST_P(ClosedLoopTest, TracksWithinTheTargetsWithoutContact) {
   o.pose_rate = rate;
   const ClosedLoopResult r = RunClosedLoop(s.world, s.world, s.path, Footprint::Rectangle(3.3, 10.0), o);
   ExpectOnTarget(r, name + " at " + std::to_string(rate) + " Hz");
-  EXPECT_EQ(r.jumps, 0) << "the noisy estimates agree with the prediction";
+  // The noisy estimates agree with the prediction: a 4-sigma gate rejects about 0.1 % of
+  // honest estimates (chi-square, 3 degrees of freedom); a harmless skip, under 1 % here.
+  EXPECT_LE(r.jumps * 100, std::max(1, r.estimates)) << r.jumps << " of " << r.estimates;
 }
 
 INSTANTIATE_TEST_SUITE_P(Maneuvers, ClosedLoopTest,
@@ -72,6 +75,18 @@ TEST(ClosedLoopSafetyTest, AWallTheMapShowsLateStopsTheMinerShortOfIt) {
   EXPECT_GT(r.min_clearance, 0.0);
   // Stopped short: the nose (5 m ahead) within a few decimetres of the wall, not far back.
   EXPECT_GT(r.truth.back().x + 5.0, 29.5);
+}
+
+TEST(ClosedLoopSafetyTest, AManeuverWithCentimetresToSpareEndsWithoutContact) {
+  // At a crossing of 6 m entries the planner finds the turn only with clearance 0: the
+  // tracker's few centimetres of error would touch a pillar corner, so its check ahead either
+  // steers round or stops short; the truth never touches.
+  const TrackingScenario s = MakeScenario("intersection_turn_6m", 0.0);
+  ASSERT_EQ(s.error, "");
+  const ClosedLoopResult r = RunClosedLoop(s.world, s.world, s.path, Footprint::Rectangle(3.3, 10.0), {});
+  EXPECT_TRUE(r.state == TrackState::kDone || r.state == TrackState::kBlocked) << r.message;
+  EXPECT_FALSE(r.contact) << r.message;
+  EXPECT_GT(r.min_clearance, 0.0);
 }
 
 TEST(ClosedLoopSafetyTest, APoseJumpIsReportedAndNotObeyed) {

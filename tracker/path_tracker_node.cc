@@ -80,18 +80,12 @@ PathTrackerNode::PathTrackerNode(NodeRuntime& runtime, PathTrackerNodeOptions op
       tracker_(options_.tracker, footprint_),
       predictor_(options_.prediction) {
   Bus& bus = runtime_.bus();
-  Subscribe<odometry_t>(bus, options_.odometry_channel,
-                        [this](const odometry_t& m) { predictor_.AddOdometry(FromLcm(m)); });
-  Subscribe<pose_estimate_t>(bus, options_.pose_channel, [this](const pose_estimate_t& m) {
-    const EstimateVerdict v = predictor_.AddEstimate(FromLcm(m));
-    if (v.jump) {
-      MINENAV_LOG(kWarn) << options_.pose_channel << ": " << v.reason;
-      last_report_ = v.reason;
-      if (request_id_) PublishStatus(runtime_.NowUtime(), task_status_t::ACTIVE, 0.0f, v.reason);
-    } else if (!v.trusted) {
-      MINENAV_LOG(kDebug) << options_.pose_channel << ": " << v.reason;
-    }
+  Subscribe<odometry_t>(bus, options_.odometry_channel, [this](const odometry_t& m) {
+    predictor_.AddOdometry(FromLcm(m));
+    if (const std::optional<EstimateVerdict> v = predictor_.TakeDeferredVerdict()) Report(*v);
   });
+  Subscribe<pose_estimate_t>(bus, options_.pose_channel,
+                             [this](const pose_estimate_t& m) { Report(predictor_.AddEstimate(FromLcm(m))); });
   Subscribe<path_t>(bus, options_.path_channel, [this](const path_t& m) {
     const int64_t now = runtime_.NowUtime();
     PathMessage p;
@@ -136,6 +130,16 @@ PathTrackerNode::PathTrackerNode(NodeRuntime& runtime, PathTrackerNodeOptions op
         tracker_.SetMap(std::move(map));
       });
   runtime_.AddTimer(1.0 / options_.rate, [this](int64_t now) { Tick(now); });
+}
+
+void PathTrackerNode::Report(const EstimateVerdict& v) {
+  if (v.jump) {
+    MINENAV_LOG(kWarn) << options_.pose_channel << ": " << v.reason;
+    last_report_ = v.reason;
+    if (request_id_) PublishStatus(runtime_.NowUtime(), task_status_t::ACTIVE, 0.0f, v.reason);
+  } else if (!v.trusted) {
+    MINENAV_LOG(kDebug) << options_.pose_channel << ": " << v.reason;
+  }
 }
 
 void PathTrackerNode::PublishStatus(int64_t now, int8_t state, float progress, const std::string& message) {

@@ -61,6 +61,8 @@ class PathTrackerNode {
 
  private:
   void Tick(int64_t now);
+  // Logs a verdict on an estimate; a jump also goes out on TASK_STATUS and HEARTBEAT.
+  void Report(const EstimateVerdict& v);
   void PublishStatus(int64_t now, int8_t state, float progress, const std::string& message);
   // "" when pose and odometry are fresh, else why not.
   std::string Staleness(int64_t now) const;

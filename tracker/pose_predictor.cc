@@ -16,7 +16,8 @@ std::string ValidatePosePredictorOptions(const PosePredictorOptions& o) {
   if (o.reanchor_after < 0) return "reanchor_after must be >= 0";
   if (!(o.default_sigma_xy > 0.0) || !(o.default_sigma_theta > 0.0))
     return "default_sigma_xy and default_sigma_theta must be > 0";
-  if (o.odometry_sigma < 0.0 || o.odometry_heading_sigma < 0.0 || o.odometry_relative_error < 0.0)
+  if (o.odometry_sigma < 0.0 || o.odometry_heading_sigma < 0.0 || o.odometry_relative_error < 0.0 ||
+      o.odometry_rotation_error < 0.0)
     return "the odometry error model must not be negative";
   if (o.history < o.max_odometry_gap) return "history must be at least max_odometry_gap";
   return "";
@@ -38,6 +39,8 @@ void DeclareOptions(OptionScope s, PosePredictorOptions& o) {
               "random-walk heading error of the odometry", 0.0, 10.0);
   s.AddDouble("odometry_relative_error", &o.odometry_relative_error, "",
               "systematic odometry error as a fraction of the distance travelled", 0.0, 1.0);
+  s.AddDouble("odometry_rotation_error", &o.odometry_rotation_error, "",
+              "systematic odometry error as a fraction of the heading turned", 0.0, 1.0);
   s.AddDouble("max_odometry_gap", &o.max_odometry_gap, "s",
               "odometry is interpolated at an estimate's time across at most this gap", 0.001, 60.0);
   s.AddDouble("history", &o.history, "s", "odometry kept to find the odometry at an estimate's time", 0.01, 3600.0);
@@ -47,13 +50,27 @@ PosePredictor::PosePredictor(PosePredictorOptions options) : options_(options) {
 
 bool PosePredictor::AddOdometry(const OdometryReading& r) {
   if (!odometry_.empty() && r.utime <= odometry_.back().utime) return false;
-  Stamped s{r.utime, r.pose, 0.0};
-  if (!odometry_.empty()) s.distance = odometry_.back().distance + TranslationDistance(odometry_.back().pose, r.pose);
+  Stamped s{r.utime, r.pose, 0.0, 0.0};
+  if (!odometry_.empty()) {
+    s.distance = odometry_.back().distance + TranslationDistance(odometry_.back().pose, r.pose);
+    s.rotation = odometry_.back().rotation + HeadingDistance(odometry_.back().pose, r.pose);
+  }
   odometry_.push_back(s);
   const auto keep = static_cast<int64_t>(options_.history * 1e6);
   while (odometry_.size() > 2 && TimeGap(r.utime, odometry_.front().utime) > static_cast<uint64_t>(keep))
     odometry_.pop_front();
+  if (waiting_ && r.utime >= waiting_->utime) {
+    const PoseEstimate e = *waiting_;
+    waiting_.reset();
+    deferred_ = AddEstimate(e);
+  }
   return true;
+}
+
+std::optional<EstimateVerdict> PosePredictor::TakeDeferredVerdict() {
+  std::optional<EstimateVerdict> v = std::move(deferred_);
+  deferred_.reset();
+  return v;
 }
 
 std::optional<PosePredictor::Stamped> PosePredictor::OdometryAt(int64_t utime) const {
@@ -63,8 +80,8 @@ std::optional<PosePredictor::Stamped> PosePredictor::OdometryAt(int64_t utime) c
   // The distance at that time: nearest reading's (the interpolation's error is sub-mm).
   const auto it = std::lower_bound(odometry_.begin(), odometry_.end(), utime,
                                    [](const Stamped& s, int64_t t) { return s.utime < t; });
-  const double distance = it == odometry_.end() ? odometry_.back().distance : it->distance;
-  return Stamped{utime, *pose, distance};
+  const Stamped& near = it == odometry_.end() ? odometry_.back() : *it;
+  return Stamped{utime, *pose, near.distance, near.rotation};
 }
 
 Eigen::Matrix3d PosePredictor::EstimateCovariance(const PoseEstimate& e) const {
@@ -76,12 +93,13 @@ Eigen::Matrix3d PosePredictor::EstimateCovariance(const PoseEstimate& e) const {
   return d;
 }
 
-Eigen::Matrix3d PosePredictor::Growth(double distance, double heading_variance) const {
-  const double s = std::max(0.0, distance);
+Eigen::Matrix3d PosePredictor::Growth(double distance, double rotation, double heading_variance) const {
+  const double s = std::max(0.0, distance), turned = std::max(0.0, rotation);
+  const double rot = options_.odometry_rotation_error * turned;
   Eigen::Matrix3d g = Eigen::Matrix3d::Zero();
   const double rel = options_.odometry_relative_error * s;
   g(0, 0) = g(1, 1) = options_.odometry_sigma * options_.odometry_sigma * s + rel * rel + heading_variance * s * s;
-  g(2, 2) = options_.odometry_heading_sigma * options_.odometry_heading_sigma * s + rel * rel;
+  g(2, 2) = options_.odometry_heading_sigma * options_.odometry_heading_sigma * (s + turned) + rot * rot;
   return g;
 }
 
@@ -102,6 +120,11 @@ EstimateVerdict PosePredictor::AddEstimate(const PoseEstimate& e) {
     v.reason = "estimate older than the last trusted one: ignored";
     return v;
   }
+  if (odometry_.empty() || e.utime > odometry_.back().utime) {
+    waiting_ = e;
+    v.reason = "waiting for the odometry of the estimate's time";
+    return v;
+  }
   const std::optional<Stamped> odo = OdometryAt(e.utime);
   if (!odo) {
     v.reason = "no odometry within " + std::to_string(options_.max_odometry_gap) + " s of the estimate's time: ignored";
@@ -112,6 +135,7 @@ EstimateVerdict PosePredictor::AddEstimate(const PoseEstimate& e) {
     chain_.Trust(e.pose, odo->pose);
     anchor_covariance_ = pe;
     anchor_distance_ = odo->distance;
+    anchor_rotation_ = odo->rotation;
     last_trusted_utime_ = e.utime;
     last_jump_.reset();
     consistent_jumps_ = 0;
@@ -123,7 +147,7 @@ EstimateVerdict PosePredictor::AddEstimate(const PoseEstimate& e) {
     return v;
   }
   const Pose2 predicted = chain_.Predict(odo->pose);
-  const Eigen::Matrix3d pp = anchor_covariance_ + Growth(odo->distance - anchor_distance_, anchor_covariance_(2, 2));
+  const Eigen::Matrix3d pp = anchor_covariance_ + Growth(odo->distance - anchor_distance_, odo->rotation - anchor_rotation_, anchor_covariance_(2, 2));
   v.sigmas = Sigmas(e.pose, predicted, pe + pp);
   std::ostringstream os;
   os.precision(3);
@@ -139,6 +163,7 @@ EstimateVerdict PosePredictor::AddEstimate(const PoseEstimate& e) {
     const Pose2 moved = last_jump_->estimate * Between(last_jump_->odometry.pose, odo->pose);
     const double between = Sigmas(e.pose, moved, pe + last_jump_->covariance +
                                                      Growth(odo->distance - last_jump_->odometry.distance,
+                                                            odo->rotation - last_jump_->odometry.rotation,
                                                             last_jump_->covariance(2, 2)));
     consistent_jumps_ = between <= options_.gate_sigma ? consistent_jumps_ + 1 : 1;
   } else {
@@ -165,7 +190,8 @@ std::optional<Pose2> PosePredictor::Predict() const {
 
 Eigen::Matrix3d PosePredictor::PredictionCovariance() const {
   if (odometry_.empty()) return anchor_covariance_;
-  return anchor_covariance_ + Growth(odometry_.back().distance - anchor_distance_, anchor_covariance_(2, 2));
+  return anchor_covariance_ + Growth(odometry_.back().distance - anchor_distance_,
+                                     odometry_.back().rotation - anchor_rotation_, anchor_covariance_(2, 2));
 }
 
 }  // namespace minenav

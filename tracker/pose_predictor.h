@@ -9,7 +9,7 @@
 // distance, in sigmas). The prediction's covariance is the anchor estimate's, grown with the
 // odometry's path length since it (a random walk: variance odometry_sigma^2 per metre, plus
 // the relative error squared times the distance squared, plus the heading's error times the
-// distance for position).
+// distance for position; the heading's variance grows with the rotation as well).
 // Policy (the "pose jump" reaction):
 //   * m <= gate_sigma: trusted (the new anchor);
 //   * m >  gate_sigma: a jump, reported (EstimateVerdict::jump, the reason in words) and NOT
@@ -42,6 +42,7 @@ struct PosePredictorOptions {
   double odometry_sigma = 0.02;        // m/sqrt(m), random-walk position error of the odometry
   double odometry_heading_sigma = 0.01;  // rad/sqrt(m), random-walk heading error of the odometry
   double odometry_relative_error = 0.02; // fraction of the distance: systematic scale error
+  double odometry_rotation_error = 0.02; // fraction of the heading turned: systematic rotation error
   double max_odometry_gap = 0.5;       // s, odometry interpolated at an estimate's time across at most this
   double history = 60.0;               // s of odometry kept to find the odometry at an estimate's time
 };
@@ -62,9 +63,14 @@ class PosePredictor {
  public:
   explicit PosePredictor(PosePredictorOptions options = {});
 
-  // Odometry readings in time order; an older or equal stamp is ignored (false).
+  // Odometry readings in time order; an older or equal stamp is ignored (false). A reading
+  // that reaches a waiting estimate's time decides it (TakeDeferredVerdict).
   bool AddOdometry(const OdometryReading& reading);
+  // An estimate stamped after the latest odometry waits for the odometry of its time (one
+  // waits at most: a newer one replaces it); the verdict then says "waiting".
   EstimateVerdict AddEstimate(const PoseEstimate& estimate);
+  // The verdict on the waiting estimate, once odometry decided it (then cleared).
+  std::optional<EstimateVerdict> TakeDeferredVerdict();
 
   // The latest estimate composed with the odometry since; nullopt before the first trusted
   // estimate or the first odometry.
@@ -84,11 +90,13 @@ class PosePredictor {
     int64_t utime = 0;
     Pose2 pose;
     double distance = 0.0;  // m of odometry path length since the first reading kept
+    double rotation = 0.0;  // rad of heading turned (absolute) since then
   };
   std::optional<Stamped> OdometryAt(int64_t utime) const;
   Eigen::Matrix3d EstimateCovariance(const PoseEstimate& e) const;
-  // The growth of the covariance over `distance` m of odometry from a pose with heading sigma.
-  Eigen::Matrix3d Growth(double distance, double heading_variance) const;
+  // The growth of the covariance over `distance` m and `rotation` rad of odometry from a pose
+  // with the given heading variance.
+  Eigen::Matrix3d Growth(double distance, double rotation, double heading_variance) const;
   double Sigmas(const Pose2& a, const Pose2& b, const Eigen::Matrix3d& covariance) const;
 
   PosePredictorOptions options_;
@@ -96,6 +104,7 @@ class PosePredictor {
   OdometryChain chain_;
   Eigen::Matrix3d anchor_covariance_ = Eigen::Matrix3d::Zero();
   double anchor_distance_ = 0.0;  // odometry distance at the anchor
+  double anchor_rotation_ = 0.0;  // odometry rotation at the anchor
   std::optional<int64_t> last_trusted_utime_;
   // The last jump (for the consistency of consecutive jumps).
   struct Jump {
@@ -104,6 +113,8 @@ class PosePredictor {
     Stamped odometry;
   };
   std::optional<Jump> last_jump_;
+  std::optional<PoseEstimate> waiting_;
+  std::optional<EstimateVerdict> deferred_;
   int consistent_jumps_ = 0;
   int jumps_total_ = 0;
 };

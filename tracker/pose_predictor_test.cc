@@ -103,10 +103,20 @@ TEST(PosePredictorTest, IgnoresUnconvergedOldAndUnmatchableEstimates) {
   EXPECT_NE(p.AddEstimate(bad).reason.find("not converged"), std::string::npos);
   ASSERT_TRUE(p.AddEstimate(Est(kT0 + 2'000'000, Pose2(0.2, 0, 0))).trusted);
   EXPECT_NE(p.AddEstimate(Est(kT0 + 1'000'000, Pose2())).reason.find("older"), std::string::npos);
-  EXPECT_NE(p.AddEstimate(Est(kT0 + 60'000'000, Pose2())).reason.find("no odometry"), std::string::npos);
+  // Newer than the odometry: it waits for the odometry of its time, then is decided.
+  EXPECT_NE(p.AddEstimate(Est(kT0 + 3'500'000, Pose2(0.35, 0, 0))).reason.find("waiting"), std::string::npos);
+  EXPECT_FALSE(p.TakeDeferredVerdict());
+  DriveOdometry(p, 4, 4);
+  const std::optional<EstimateVerdict> later = p.TakeDeferredVerdict();
+  ASSERT_TRUE(later);
+  EXPECT_TRUE(later->trusted) << later->reason;
+  EXPECT_EQ(*p.last_trusted_utime(), kT0 + 3'500'000);
+  // Across a gap in the odometry longer than max_odometry_gap: not matchable.
+  p.AddOdometry(Odo(kT0 + 60'000'000, Pose2(0.4, 0, 0)));
+  EXPECT_NE(p.AddEstimate(Est(kT0 + 30'000'000, Pose2())).reason.find("no odometry"), std::string::npos);
   EXPECT_FALSE(p.AddOdometry(Odo(kT0, Pose2())));  // out of order
   // An estimate without covariance gets the default sigmas (trusted when it agrees).
-  PoseEstimate bare = Est(kT0 + 3'000'000, Pose2(0.3, 0.01, 0));
+  PoseEstimate bare = Est(kT0 + 60'000'000, Pose2(0.4, 0.01, 0));
   bare.covariance.setZero();
   EXPECT_TRUE(p.AddEstimate(bare).trusted);
   EXPECT_EQ(ValidatePosePredictorOptions({}), "");

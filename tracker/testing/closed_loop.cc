@@ -187,8 +187,8 @@ TrackingScenario MakeScenario(const std::string& name, double clearance) {
   Se2PlannerOptions po;
   po.clearance = clearance;
   Pose2 start, goal;
-  if (name == "intersection_turn") {
-    s.world = planner_test::Crossing(kRoom, 20.0);
+  if (name == "intersection_turn" || name == "intersection_turn_6m") {
+    s.world = planner_test::Crossing(name == "intersection_turn" ? 6.5 : kRoom, 20.0);
     po.heading_bins = 36;
     po.xy_resolution = 0.2;
     start = Pose2(0, -12, kPi / 2);

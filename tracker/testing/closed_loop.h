@@ -98,7 +98,10 @@ namespace minenav::testing {
 //   box_cut            7 m up to a coal face across an entry, from 0.3 m off its centre line;
 //   slab_cut           at the same face, 1.4 m across it (a multi-point maneuver with reversals);
 //   intersection_turn  from an entry into a crosscut, ending faced back (backing round the
-//                      corner: the planner's multi-point maneuver at a 6 m crossing).
+//                      corner: the planner's multi-point maneuver) at a crossing of two
+//                      6.5 m entries;
+//   intersection_turn_6m  the same at 6 m entries: the planner finds it only with clearance 0,
+//                      centimetres from the pillar corners.
 struct TrackingScenario {
   std::string name;
   std::vector<Segment> world;  // the true world (= the tracker's map in the tests)
