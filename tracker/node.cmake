@@ -14,3 +14,11 @@ minenav_executable(path_tracker path_tracker_main.cc)
 target_link_libraries(path_tracker PRIVATE minenav_path_tracker_node)
 
 minenav_test(NAME path_tracker_node_test SOURCES path_tracker_node_test.cc LIBS minenav_path_tracker_node)
+
+minenav_node_library(minenav_survey_client_node survey_client_node.cc)
+target_link_libraries(minenav_survey_client_node PUBLIC minenav_tracker minenav_node)
+
+minenav_executable(survey_client survey_client_main.cc)
+target_link_libraries(survey_client PRIVATE minenav_survey_client_node)
+
+minenav_test(NAME survey_client_node_test SOURCES survey_client_node_test.cc LIBS minenav_survey_client_node)

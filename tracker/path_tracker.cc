@@ -82,7 +82,7 @@ void DeclareOptions(OptionScope s, PathTrackerOptions& o) {
               0.001, 10.0);
   s.AddBool("regulated", &o.regulated, "regulate the speed (arcs, walls, approach); false = plain pure pursuit");
   s.AddDouble("regulated_min_radius", &o.regulated_min_radius, "m",
-              "on arcs tighter than this the speed scales by radius / this (Nav2 RPP)", 0.0, 1000.0);
+              "where the pursuit arc is tighter than this the speed scales by its radius / this (Nav2 RPP)", 0.0, 1000.0);
   s.AddDouble("near_obstacle_distance", &o.near_obstacle_distance, "m",
               "closer to a wall than this the speed scales with the clearance", 0.0, 100.0);
   s.AddDouble("min_obstacle_speed_factor", &o.min_obstacle_speed_factor, "", "least speed fraction near walls", 0.0,
@@ -345,7 +345,10 @@ TrackStep PathTracker::Drive(const Pose2& pose) {
                              : s.motion == QuantisedMotion::kArcRight ? -1.0 / options_.turn_radius
                                                                       : 0.0;
     if (options_.regulated) {
-      if (curvature != 0.0) speed = CurvatureRegulatedSpeed(speed, options_.turn_radius, options_.regulated_min_radius);
+      // On the path's curvature (the pursuit arc's, at most the miner's), not the quantised
+      // command's: alternating line and arc on a straight stretch is not a tight turn.
+      const double k_path = std::min(std::abs(k), 1.0 / options_.turn_radius);
+      if (k_path > 0.0) speed = CurvatureRegulatedSpeed(speed, 1.0 / k_path, options_.regulated_min_radius);
       if (map_)
         speed = ProximityRegulatedSpeed(speed, map_->Clearance(pose, options_.near_obstacle_distance),
                                         options_.near_obstacle_distance, options_.min_obstacle_speed_factor);

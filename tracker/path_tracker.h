@@ -12,7 +12,8 @@
 //      point| > max_heading_error, or an arc tighter than turn_in_place_curvature): turn in
 //      place towards the goal point until within align_tolerance (a "correction");
 //   4. else the curvature to the goal point one lookahead ahead, quantised;
-//   5. the speed: cruise, regulated (slower on arcs, near walls, approaching the run's end);
+//   5. the speed: cruise, regulated (slower where the pursuit arc is tighter than
+//      regulated_min_radius, near walls, approaching the run's end);
 //   6. the commanded motion over collision_time (at least collision_min_distance, at most
 //      what is left of the run or turn plus a few cm or a degree) is checked
 //      against the map with the planner's collision checker; a motion that would touch a
@@ -55,7 +56,7 @@ struct PathTrackerOptions {
   double heading_tolerance = 0.0087;    // rad, final and turn-in-place heading tolerance (0.5 deg)
   double goal_tolerance = 0.10;         // m, a path that ends farther than this from its goal failed
   bool regulated = true;                // false = plain pure pursuit: cruise everywhere
-  double regulated_min_radius = 8.0;    // m, arcs tighter than this slow down by radius / this
+  double regulated_min_radius = 8.0;    // m, a pursuit arc tighter than this slows down by radius / this
   double near_obstacle_distance = 0.5;  // m, closer to a wall than this the speed scales down
   double min_obstacle_speed_factor = 0.3;  // least fraction of the speed near walls
   double approach_distance = 0.3;       // m, before a stop the speed scales with the distance left
