@@ -29,6 +29,7 @@ namespace {
 struct Cell {
   std::vector<double> ct_rms, ct_max, heading_max, final_pos, final_heading, time, corrections;
   int runs = 0, done = 0, blocked = 0, contact = 0, jumps = 0;
+  std::vector<std::string> messages;  // how each run ended
 };
 
 int Run(int argc, char** argv) {
@@ -83,6 +84,7 @@ int Run(int argc, char** argv) {
             c.final_heading.push_back(RadToDeg(r.final_heading_error));
             c.time.push_back(r.time);
             c.corrections.push_back(r.corrections);
+            c.messages.push_back(r.message);
           }
           const char* mode = regulated ? "regulated" : "plain";
           std::printf("%-18s %-6.3f %-5.1f %-9s | %6.2f %6.2f %6.2f %6.2f %6.2f %7.1f %5.0f | %d/%d/%d of %d\n",
@@ -95,7 +97,8 @@ int Run(int argc, char** argv) {
                           {"heading_max_deg", c.heading_max}, {"final_position_cm", c.final_pos},
                           {"final_heading_deg", c.final_heading}, {"time_s", c.time},
                           {"corrections", c.corrections}, {"runs", c.runs}, {"done", c.done},
-                          {"blocked", c.blocked}, {"contact", c.contact}, {"jumps_reported", c.jumps}});
+                          {"blocked", c.blocked}, {"contact", c.contact}, {"jumps_reported", c.jumps},
+                          {"messages", c.messages}});
           std::fflush(stdout);
         }
       }

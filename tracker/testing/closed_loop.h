@@ -25,6 +25,7 @@
 #include "planner/motion.h"
 #include "sim/odometry_model.h"
 #include "sim/skid_steer.h"
+#include "sim/vehicle_sim.h"
 #include "tracker/path_tracker.h"
 #include "tracker/pose_predictor.h"
 
@@ -40,12 +41,7 @@ struct ClosedLoopOptions {
   double max_time = 2000.0;         // s, the run is cut off after this
   uint64_t seed = 1;
   SkidSteerOptions vehicle;
-  OdometryErrorOptions odometry{.scale_error = 0.01,
-                                .rotation_scale_error = 0.01,
-                                .heading_drift_per_metre = 0.002,
-                                .heading_drift_per_second = 0.0,
-                                .translation_noise = 0.005,
-                                .rotation_noise = 0.002};
+  OdometryErrorOptions odometry = VehicleSimOptions().odometry;  // vehicle_sim's drifting odometry
   double slip_heading_per_metre = 0.005;  // rad/m the true heading turns that the odometry misses
   double slip_lateral_sigma = 0.005;      // m/sqrt(m), random sideways slip the odometry misses
   PathTrackerOptions tracker;
