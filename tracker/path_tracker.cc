@@ -56,6 +56,9 @@ std::string ValidatePathTrackerOptions(const PathTrackerOptions& o) {
 void DeclareOptions(OptionScope s, PathTrackerOptions& o) {
   s.AddDouble("lookahead", &o.lookahead, "m", "goal point distance along the path (pure pursuit's lookahead)", 0.05,
               20.0);
+  s.AddDouble("lookahead_time", &o.lookahead_time, "s",
+              "the lookahead grows to cruise_speed times this when that is longer (Nav2's adaptive lookahead)", 0.0,
+              100.0);
   s.AddDouble("turn_radius", &o.turn_radius, "m", "the miner's one turning radius besides turning in place", 0.1,
               100.0);
   s.AddDouble("straight_deadband", &o.straight_deadband, "1/m",
@@ -227,27 +230,36 @@ std::optional<TrackStep> PathTracker::CheckAhead(const Pose2& pose, const TrackS
   if (!map_->PieceCollides(pose, piece)) return std::nullopt;
   if (step.command.mode == DriveCommand::Mode::kVelocity) {
     // The commanded motion would touch a wall: the other motions of the same direction
-    // (straight, arc left, arc right), the one nearest the pursuit curvature first, if one
-    // is free over the same distance (the next tick corrects again).
+    // (straight, arc left, arc right; the nearest the pursuit curvature first) over the same
+    // distance, then all of them over half of it, a quarter, ... down to
+    // collision_min_distance, driven slower so that collision_time covers only the distance
+    // found free. The next tick corrects again.
     const int d = DriveDirection(piece.motion);
     const double speed = std::abs(step.command.v);
+    const double commanded = speed > 0.0 ? step.command.omega / speed : 0.0;
     std::vector<double> curvatures = {0.0, 1.0 / options_.turn_radius, -1.0 / options_.turn_radius};
     std::sort(curvatures.begin(), curvatures.end(), [&](double a, double b) {
       return std::abs(a - step.curvature) < std::abs(b - step.curvature);
     });
-    for (const double k : curvatures) {
-      const double omega = k * speed;
-      if (omega == step.command.omega) continue;
-      MotionPiece other = piece;
-      other.motion = MotionOf(d, omega);
-      other.radius = IsArc(other.motion) ? options_.turn_radius : 0.0;
-      other.end = PoseAfter(pose, other.motion, other.amount, other.radius);
-      if (map_->PieceCollides(pose, other)) continue;
-      TrackStep s = step;
-      s.command.omega = omega;
-      s.motion = k == 0.0 ? QuantisedMotion::kStraight : k > 0 ? QuantisedMotion::kArcLeft : QuantisedMotion::kArcRight;
-      s.message = what + " would touch the map: " + ToString(other.motion) + " instead";
-      return s;
+    const double full = piece.amount;
+    for (double distance = full;; distance = std::max(options_.collision_min_distance, 0.5 * distance)) {
+      for (const double k : curvatures) {
+        if (distance == full && k == commanded) continue;  // checked above
+        MotionPiece other = piece;
+        other.motion = MotionOf(d, k);
+        other.amount = distance;
+        other.radius = IsArc(other.motion) ? options_.turn_radius : 0.0;
+        other.end = PoseAfter(pose, other.motion, other.amount, other.radius);
+        if (map_->PieceCollides(pose, other)) continue;
+        TrackStep s = step;
+        const double slower = distance < full ? std::min(speed, distance / std::max(1e-9, options_.collision_time)) : speed;
+        s.command.v = d * slower;
+        s.command.omega = k * slower;
+        s.motion = k == 0.0 ? QuantisedMotion::kStraight : k > 0 ? QuantisedMotion::kArcLeft : QuantisedMotion::kArcRight;
+        s.message = what + " would touch the map: " + ToString(other.motion) + " " + Fixed(distance) + " m instead";
+        return s;
+      }
+      if (distance <= options_.collision_min_distance) break;
     }
   }
   return Finish(TrackState::kBlocked, "blocked: " + what + " from " + Fixed(pose.x) + ", " + Fixed(pose.y) +
@@ -325,7 +337,8 @@ TrackStep PathTracker::Drive(const Pose2& pose) {
     correcting_ = false;
     return Stop("run done");
   }
-  const Eigen::Vector2d goal = LookaheadPoint(run, p.arc_length, options_.lookahead);
+  const double lookahead = std::max(options_.lookahead, options_.lookahead_time * options_.cruise_speed);
+  const Eigen::Vector2d goal = LookaheadPoint(run, p.arc_length, lookahead);
   const double bearing = BearingInEffectiveFrame(pose, goal, d);
   const double k = PursuitCurvature(pose, goal, d);
   const bool far = std::abs(p.cross_track) > options_.max_cross_track || std::abs(bearing) > options_.max_heading_error ||

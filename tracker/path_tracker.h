@@ -11,7 +11,8 @@
 //   3. far off (|cross-track| > max_cross_track) or pointing away (|bearing of the goal
 //      point| > max_heading_error, or an arc tighter than turn_in_place_curvature): turn in
 //      place towards the goal point until within align_tolerance (a "correction");
-//   4. else the curvature to the goal point one lookahead ahead, quantised;
+//   4. else the curvature to the goal point one lookahead ahead (at least lookahead_time of
+//      cruise), quantised;
 //   5. the speed: cruise, regulated (slower where the pursuit arc is tighter than
 //      regulated_min_radius, near walls, approaching the run's end);
 //   6. the commanded motion over collision_time (at least collision_min_distance, at most
@@ -41,7 +42,8 @@
 namespace minenav {
 
 struct PathTrackerOptions {
-  double lookahead = 0.6;               // m, goal point distance along the path
+  double lookahead = 0.6;               // m, goal point distance along the path (the least)
+  double lookahead_time = 2.0;          // s, the lookahead grows to cruise_speed x this when longer
   double turn_radius = 4.0;             // m, the miner's one turning radius
   double straight_deadband = 0.02;      // 1/m, |curvature| below which the command is straight
   double turn_in_place_curvature = 1.0; // 1/m, |curvature| above which it turns in place first
