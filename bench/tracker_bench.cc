@@ -70,6 +70,7 @@ int Run(int argc, char** argv) {
               o.vehicle.max_deceleration = 0.5;
               o.vehicle.max_yaw_acceleration = 0.2;
               o.tracker.turn_rate = 0.2;
+              o.tracker.deceleration = o.vehicle.max_deceleration;
             }
             const testing::ClosedLoopResult r = testing::RunClosedLoop(s.world, s.world, s.path, miner, o);
             ++c.runs;

@@ -97,6 +97,10 @@ void DeclareOptions(OptionScope s, PathTrackerOptions& o) {
               60.0);
   s.AddDouble("collision_min_distance", &o.collision_min_distance, "m",
               "least distance checked ahead (in rad, times 1 m, for turns in place)", 0.0, 100.0);
+  s.AddDouble("deceleration", &o.deceleration, "m/s^2",
+              "the vehicle's braking: the check ahead never covers less than the stopping distance of the last "
+              "commanded speed (0.1: vehicle_sim's miner)",
+              0.0, 100.0);
   s.AddDouble("collision_margin", &o.collision_margin, "m", "clearance the checked motion must keep from the walls",
               0.0, 10.0);
   s.AddDouble("sample_step", &o.sample_step, "m", "spacing of the path's samples", 0.001, 1.0);
@@ -222,7 +226,7 @@ std::optional<TrackStep> PathTracker::CheckAhead(const Pose2& pose, const TrackS
     const int d = step.command.v >= 0 ? 1 : -1;
     piece.motion = MotionOf(d, step.command.omega);
     const double reach = std::max(options_.collision_min_distance, std::abs(step.command.v) * options_.collision_time);
-    piece.amount = std::min(reach, std::max(0.0, left) + kDriveOvershoot);
+    piece.amount = std::min(reach, std::max(std::max(0.0, left) + kDriveOvershoot, StoppingDistance()));
     piece.radius = IsArc(piece.motion) ? options_.turn_radius : 0.0;
     what = std::string(ToString(piece.motion)) + " " + Fixed(piece.amount) + " m";
   }
@@ -242,7 +246,9 @@ std::optional<TrackStep> PathTracker::CheckAhead(const Pose2& pose, const TrackS
       return std::abs(a - step.curvature) < std::abs(b - step.curvature);
     });
     const double full = piece.amount;
-    for (double distance = full;; distance = std::max(options_.collision_min_distance, 0.5 * distance)) {
+    // Never shorter than the vehicle needs to stop from the last commanded speed.
+    const double least = std::max(options_.collision_min_distance, StoppingDistance() + kDriveOvershoot);
+    for (double distance = full;; distance = std::max(least, 0.5 * distance)) {
       for (const double k : curvatures) {
         if (distance == full && k == commanded) continue;  // checked above
         MotionPiece other = piece;
@@ -259,7 +265,7 @@ std::optional<TrackStep> PathTracker::CheckAhead(const Pose2& pose, const TrackS
         s.message = what + " would touch the map: " + ToString(other.motion) + " " + Fixed(distance) + " m instead";
         return s;
       }
-      if (distance <= options_.collision_min_distance) break;
+      if (distance <= least) break;
     }
   }
   return Finish(TrackState::kBlocked, "blocked: " + what + " from " + Fixed(pose.x) + ", " + Fixed(pose.y) +
@@ -278,7 +284,22 @@ TrackStep PathTracker::Turn(double heading_error, const std::string& what) {
   return s;
 }
 
+double PathTracker::StoppingDistance() const {
+  if (!(options_.deceleration > 0.0)) return 0.0;
+  return last_speed_ * last_speed_ / (2.0 * options_.deceleration);
+}
+
 TrackStep PathTracker::Update(const Pose2& pose) {
+  TrackStep step = Step(pose);
+  // A velocity command sets the speed the vehicle may still have; a turn in place means it
+  // stopped first (the miner does not turn in place while moving). A stop does not: the
+  // vehicle is still braking.
+  if (step.command.mode == DriveCommand::Mode::kVelocity) last_speed_ = std::abs(step.command.v);
+  if (step.command.mode == DriveCommand::Mode::kTurnInPlace) last_speed_ = 0.0;
+  return step;
+}
+
+TrackStep PathTracker::Step(const Pose2& pose) {
   if (state_ != TrackState::kActive) return Stop(message_);
   for (int guard = 0; guard < static_cast<int>(runs_.size()) + 3; ++guard) {
     if (run_ >= static_cast<int>(runs_.size())) {

@@ -16,7 +16,8 @@
 //   5. the speed: cruise, regulated (slower where the pursuit arc is tighter than
 //      regulated_min_radius, near walls, approaching the run's end);
 //   6. the commanded motion over collision_time (at least collision_min_distance, at most
-//      what is left of the run or turn plus a few cm or a degree) is checked
+//      what is left of the run or turn plus a few cm or a degree, but never less than the
+//      stopping distance from the last commanded speed at `deceleration`) is checked
 //      against the map with the planner's collision checker; a motion that would touch a
 //      wall is replaced by another of the same direction (straight, arc left, arc right, the
 //      nearest the pursuit curvature first) when that is free, else the vehicle stops and
@@ -43,7 +44,7 @@ namespace minenav {
 
 struct PathTrackerOptions {
   double lookahead = 0.6;               // m, goal point distance along the path (the least)
-  double lookahead_time = 2.0;          // s, the lookahead grows to cruise_speed x this when longer
+  double lookahead_time = 0.0;          // s, the lookahead grows to cruise_speed x this when longer (0 = fixed)
   double turn_radius = 4.0;             // m, the miner's one turning radius
   double straight_deadband = 0.02;      // 1/m, |curvature| below which the command is straight
   double turn_in_place_curvature = 1.0; // 1/m, |curvature| above which it turns in place first
@@ -65,6 +66,7 @@ struct PathTrackerOptions {
   double min_approach_speed = 0.005;    // m/s, least speed approaching a stop
   double collision_time = 3.0;          // s of the commanded motion checked against the map
   double collision_min_distance = 0.15; // m, least distance checked ahead (rad x 1 m turning)
+  double deceleration = 0.1;            // m/s^2, the vehicle's braking (the check covers its stopping distance)
   double collision_margin = 0.0;        // m, clearance the checked motion must keep from the walls
   double sample_step = 0.02;            // m between the path's samples
   double search_window = 1.0;           // m along the run searched for the nearest sample
@@ -138,6 +140,9 @@ class PathTracker {
   const Footprint& footprint() const { return footprint_; }
 
  private:
+  TrackStep Step(const Pose2& pose);
+  // m the vehicle may still travel braking from the last commanded speed.
+  double StoppingDistance() const;
   TrackStep Stop(const std::string& message) const;
   TrackStep Finish(TrackState state, const std::string& message);
   // nullopt when the commanded motion is free; else the step to take instead: another
@@ -159,6 +164,7 @@ class PathTracker {
   bool correcting_ = false;
   bool aligning_goal_ = false;
   int corrections_ = 0;
+  double last_speed_ = 0.0;  // m/s, of the last velocity command
   double done_length_ = 0.0;
   double total_length_ = 0.0;
   TrackState state_ = TrackState::kIdle;

@@ -227,8 +227,8 @@ TEST(PathTrackerNodeTest, APoseJumpIsReportedNotObeyed) {
 TEST(PathTrackerNodeTest, EveryOptionIsReachable) {
   const auto keys = ExpectEveryOptionReachable<PathTrackerNodeOptions>(
       PathTrackerNodeOptions(), [](ConfigSchema& s, PathTrackerNodeOptions& o) { DeclareOptions(s, o); });
-  // 7 channels, rate, 3 limits, the footprint's 3, the tracker's 27, the prediction's 10.
-  EXPECT_EQ(keys.size(), 7u + 1u + 3u + 3u + 27u + 10u);
+  // 7 channels, rate, 3 limits, the footprint's 3, the tracker's 28, the prediction's 10.
+  EXPECT_EQ(keys.size(), 7u + 1u + 3u + 3u + 28u + 10u);
   for (const std::string& k : keys) EXPECT_EQ(k.find("truth"), std::string::npos) << k;
   PathTrackerNodeOptions bad;
   bad.tracker.command_timeout = 0.05;
