@@ -51,12 +51,12 @@ PathMessage PathFromLcm(const path_t& m, double turn_radius) {
   return out;
 }
 
-path_t PathToLcm(const PlannedPath& path, int64_t utime, int64_t request_id, double speed) {
+path_t PathToLcm(const PlannedPath& path, int64_t request_id, int64_t utime, double speed, const std::string& status) {
   path_t m{};
   m.utime = utime;
   m.request_id = request_id;
   m.feasible = true;
-  m.status = "ok";
+  m.status = status;
   m.start = ToLcm(path.start);
   for (const MotionPiece& p : path.pieces) {
     path_segment_t s{};

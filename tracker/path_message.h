@@ -5,6 +5,9 @@
 // piece is checked to be that motion between its poses (PoseAfter within 2 cm and 0.5 deg).
 // Throws InputError with one line naming the segment.
 
+#include <cstdint>
+#include <string>
+
 #include "minenav/path_t.hpp"
 #include "planner/motion.h"
 
@@ -20,7 +23,9 @@ struct PathMessage {
 
 // turn_radius (m): arcs must have it (within 1 %).
 PathMessage PathFromLcm(const path_t& m, double turn_radius);
-// speed (m/s) written as every segment's speed limit.
-path_t PathToLcm(const PlannedPath& path, int64_t utime, int64_t request_id, double speed = 0.0);
+// The path as path_t segments (motion, end pose, radius, speed: m/s, every segment's limit)
+// tagged with request_id. The same signature as the live path_planner's (planner/
+// path_planner_node.h, branch of issue 13): one of the two goes when both are merged.
+path_t PathToLcm(const PlannedPath& path, int64_t request_id, int64_t utime, double speed, const std::string& status);
 
 }  // namespace minenav

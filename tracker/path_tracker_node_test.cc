@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "common/config_testing.h"
+#include "common/file_io.h"
 #include "common/node/contour_map_conversions.h"
 #include "common/node/conversions.h"
 #include "common/node/fake_runtime.h"
@@ -50,7 +51,7 @@ struct Harness {
     bus->InjectMessage("POSE", ToLcm(e));
   }
   void Path(const PlannedPath& p, int64_t request_id) {
-    bus->InjectMessage("PATH", PathToLcm(p, clock.NowUtime(), request_id));
+    bus->InjectMessage("PATH", PathToLcm(p, request_id, clock.NowUtime(), 0.076, "ok"));
   }
   std::vector<task_status_t> Statuses() const { return bus->Decoded<task_status_t>("TASK_STATUS"); }
   drive_command_t LastCommand() const { return bus->Decoded<drive_command_t>("DRIVE_COMMAND").back(); }
@@ -198,7 +199,7 @@ TEST(PathTrackerNodeTest, RefusesAPathThroughAWallOfTheMapAndAMalformedPath) {
   EXPECT_NE(h.Statuses().back().message.find("refused"), std::string::npos) << h.Statuses().back().message;
   EXPECT_EQ(h.LastCommand().mode, drive_command_t::STOP);
   // An arc of the wrong radius.
-  path_t bad = PathToLcm(Straight(0, 3), h.clock.NowUtime(), 11);
+  path_t bad = PathToLcm(Straight(0, 3), 11, h.clock.NowUtime(), 0.076, "ok");
   bad.segments[0].motion = path_segment_t::ARC_LEFT;
   bad.segments[0].radius = 2.0;
   h.bus->InjectMessage("PATH", bad);
@@ -222,6 +223,38 @@ TEST(PathTrackerNodeTest, APoseJumpIsReportedNotObeyed) {
   const drive_command_t c = h.LastCommand();
   EXPECT_EQ(c.mode, drive_command_t::VELOCITY) << "still on the prediction: straight on";
   EXPECT_DOUBLE_EQ(c.omega, 0.0);
+}
+
+TEST(PathMessageTest, AmountsComeBackFromThePoses) {
+  // Every motion, arcs both ways in both directions and longer than a half turn.
+  PlannedPath p;
+  p.start = Pose2(1, 2, 0.3);
+  Pose2 at = p.start;
+  const std::vector<std::pair<Motion, double>> pieces = {
+      {Motion::kForward, 2.0},        {Motion::kArcLeft, 1.5},           {Motion::kArcRight, 14.0},
+      {Motion::kTurnInPlace, -1.2},   {Motion::kReverse, 0.7},           {Motion::kArcLeftReverse, 2.5},
+      {Motion::kArcRightReverse, 3.0}};
+  for (const auto& [m, amount] : pieces) {
+    const double radius = IsArc(m) ? 4.0 : 0.0;
+    at = PoseAfter(at, m, amount, radius);
+    p.pieces.push_back({m, amount, radius, at});
+  }
+  const PathMessage back = PathFromLcm(PathToLcm(p, 5, kT0, 0.076, "ok"), 4.0);
+  EXPECT_EQ(back.request_id, 5);
+  ASSERT_EQ(back.path.pieces.size(), p.pieces.size());
+  for (size_t k = 0; k < p.pieces.size(); ++k) {
+    EXPECT_EQ(back.path.pieces[k].motion, p.pieces[k].motion) << k;
+    EXPECT_NEAR(back.path.pieces[k].amount, p.pieces[k].amount, 1e-5) << k;
+  }
+  // A piece that cannot reach its end: refused, named.
+  path_t bad = PathToLcm(p, 6, kT0, 0.076, "ok");
+  bad.segments[1].end.y += 0.5;
+  try {
+    PathFromLcm(bad, 4.0);
+    ADD_FAILURE() << "accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("segment 1"), std::string::npos) << e.what();
+  }
 }
 
 TEST(PathTrackerNodeTest, EveryOptionIsReachable) {
