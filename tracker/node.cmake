@@ -1,4 +1,4 @@
-# The waypoint_driver process: a thin main over its node (LCM) over minenav_tracker.
+# The processes: thin mains over their nodes (LCM) over minenav_tracker.
 minenav_node_library(minenav_waypoint_driver_node waypoint_driver_node.cc)
 target_link_libraries(minenav_waypoint_driver_node PUBLIC minenav_tracker minenav_node)
 
@@ -6,3 +6,19 @@ minenav_executable(waypoint_driver waypoint_driver_main.cc)
 target_link_libraries(waypoint_driver PRIVATE minenav_waypoint_driver_node)
 
 minenav_test(NAME waypoint_driver_node_test SOURCES waypoint_driver_node_test.cc LIBS minenav_waypoint_driver_node)
+
+minenav_node_library(minenav_path_tracker_node path_tracker_node.cc path_message.cc)
+target_link_libraries(minenav_path_tracker_node PUBLIC minenav_tracker minenav_node)
+
+minenav_executable(path_tracker path_tracker_main.cc)
+target_link_libraries(path_tracker PRIVATE minenav_path_tracker_node)
+
+minenav_test(NAME path_tracker_node_test SOURCES path_tracker_node_test.cc LIBS minenav_path_tracker_node)
+
+minenav_node_library(minenav_survey_client_node survey_client_node.cc)
+target_link_libraries(minenav_survey_client_node PUBLIC minenav_tracker minenav_node)
+
+minenav_executable(survey_client survey_client_main.cc)
+target_link_libraries(survey_client PRIVATE minenav_survey_client_node)
+
+minenav_test(NAME survey_client_node_test SOURCES survey_client_node_test.cc LIBS minenav_survey_client_node)

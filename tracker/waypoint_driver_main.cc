@@ -1,6 +1,7 @@
 // waypoint_driver: drives the vehicle through a list of stations (x,y,theta CSV) with
 // the WaypointFollower, pausing at each station so the ladar can take a scan there.
-// It is the survey demo's driver; the pure-pursuit path_tracker replaces it later.
+// It steers by odometry alone (never SIM_TRUTH); the survey on the fleet's estimates is
+// survey_client + path_planner + path_tracker (tracker/README.md).
 // The node is tracker/waypoint_driver_node.h.
 
 #include <string>

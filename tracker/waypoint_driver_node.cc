@@ -7,7 +7,6 @@
 #include "common/node/conversions.h"
 #include "minenav/drive_command_t.hpp"
 #include "minenav/odometry_t.hpp"
-#include "minenav/vehicle_truth_t.hpp"
 
 namespace minenav {
 namespace {
@@ -38,12 +37,8 @@ WaypointDriverOptions WaypointDriverDefaults(const std::vector<std::string>& arg
 
 void DeclareOptions(ConfigSchema& s, WaypointDriverOptions& o) {
   s.AddString("stations", &o.stations, "scan stations CSV (x,y,theta) to visit in order");
-  s.AddString("pose_source", &o.pose_source,
-              "which pose to steer by: simulator ground truth or dead-reckoned odometry", {"truth", "odometry"});
-  s.AddChannel("truth_channel", &o.truth_channel, "subscribes", "vehicle_truth_t",
-               "vehicle pose when pose_source = truth");
   s.AddChannel("odometry_channel", &o.odometry_channel, "subscribes", "odometry_t",
-               "vehicle pose when pose_source = odometry");
+               "the pose steered by (dead-reckoned; it drifts)");
   s.AddChannel("drive_channel", &o.drive_channel, "publishes", "drive_command_t", "drive commands");
   s.AddDouble("rate", &o.rate, "Hz",
               "control rate; the commands stay valid for 3 periods unless follower.command_timeout is given", 1.0,
@@ -65,13 +60,8 @@ WaypointDriverNode::WaypointDriverNode(NodeRuntime& runtime, WaypointDriverOptio
                                        const std::vector<Station>& stations)
     : runtime_(runtime), options_(std::move(options)), tour_(options_.follower, Poses(stations), options_.dwell) {
   MINENAV_LOG(kInfo) << "driving through " << stations.size() << " stations from " << options_.stations;
-  if (options_.pose_source == "truth") {
-    Subscribe<vehicle_truth_t>(runtime_.bus(), options_.truth_channel,
-                               [this](const vehicle_truth_t& m) { pose_ = FromLcm(m).pose; });
-  } else {
-    Subscribe<odometry_t>(runtime_.bus(), options_.odometry_channel,
-                          [this](const odometry_t& m) { pose_ = FromLcm(m).pose; });
-  }
+  Subscribe<odometry_t>(runtime_.bus(), options_.odometry_channel,
+                        [this](const odometry_t& m) { pose_ = FromLcm(m).pose; });
   runtime_.AddTimer(1.0 / options_.rate, [this](int64_t now) { Tick(now); });
 }
 

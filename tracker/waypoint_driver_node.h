@@ -1,7 +1,9 @@
 #pragma once
 // waypoint_driver as a node: the StationTour at --rate on the runtime's clock, steering by
-// the simulator's true pose or by odometry, one DRIVE_COMMAND per tick; it stops the
-// process after the last station when asked to. The process (waypoint_driver_main.cc) only
+// dead-reckoned odometry, one DRIVE_COMMAND per tick; it stops the process after the last
+// station when asked to. It no longer steers by SIM_TRUTH (issue 14: ground truth decides
+// nothing about how the vehicle moves); the closed loop on the fleet's estimates is
+// survey_client + path_planner + path_tracker. The process (waypoint_driver_main.cc) only
 // declares these options and wires the node.
 
 #include <cstdint>
@@ -19,8 +21,6 @@ namespace minenav {
 
 struct WaypointDriverOptions {
   std::string stations;               // CSV x,y,theta
-  std::string pose_source = "truth";  // truth | odometry
-  std::string truth_channel = "SIM_TRUTH";
   std::string odometry_channel = "ODOMETRY";
   std::string drive_channel = "DRIVE_COMMAND";
   double rate = 10.0;   // Hz, control rate

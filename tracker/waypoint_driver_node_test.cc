@@ -33,11 +33,11 @@ struct Harness {
   WaypointDriverNode node;
 };
 
-vehicle_truth_t TruthAt(const Pose2& pose) {
-  TruthReading t;
-  t.utime = kT0;
-  t.pose = pose;
-  return ToLcm(t);
+odometry_t OdometryAt(const Pose2& pose) {
+  OdometryReading o;
+  o.utime = kT0;
+  o.pose = pose;
+  return ToLcm(o);
 }
 
 TEST(WaypointDriverNodeTest, StandsStillWithoutAPoseWithCommandsValidForThreePeriods) {
@@ -63,8 +63,8 @@ TEST(WaypointDriverNodeTest, DwellsAtTheLastStationThenStopsTheProcess) {
   o.stations = "test";
   o.dwell = 0.5;
   Harness h(o, {Station{Pose2(2, 0, 0)}});
-  h.bus->InjectMessage("SIM_TRUTH", TruthAt(Pose2(2, 0, 0)));  // already there
-  h.runtime->SpinOnce(0);  // tick without a pose, then the truth arrives
+  h.bus->InjectMessage("ODOMETRY", OdometryAt(Pose2(2, 0, 0)));  // already there
+  h.runtime->SpinOnce(0);  // tick without a pose, then the odometry arrives
   h.Tick();                // arrives: the dwell starts
   EXPECT_FALSE(h.runtime->StopRequested());
   for (int k = 0; k < 4; ++k) {
@@ -77,12 +77,13 @@ TEST(WaypointDriverNodeTest, DwellsAtTheLastStationThenStopsTheProcess) {
     EXPECT_EQ(c.mode, drive_command_t::STOP);
 }
 
-TEST(WaypointDriverNodeTest, SteersByOdometryWhenAskedTo) {
+TEST(WaypointDriverNodeTest, SteersByOdometryNeverByTheTruth) {
   WaypointDriverOptions o;
   o.stations = "test";
-  o.pose_source = "odometry";
   Harness h(o, {Station{Pose2(5, 0, 0)}});
-  h.bus->InjectMessage("SIM_TRUTH", TruthAt(Pose2(0, 0, 0)));  // ignored
+  TruthReading truth;
+  truth.utime = kT0;
+  h.bus->InjectMessage("SIM_TRUTH", ToLcm(truth));  // not subscribed
   h.runtime->SpinOnce(0);
   h.Tick();
   EXPECT_EQ(h.bus->Decoded<drive_command_t>("DRIVE_COMMAND").back().mode, drive_command_t::STOP);
@@ -103,9 +104,10 @@ TEST(WaypointDriverNodeTest, NeedsStations) {
 TEST(WaypointDriverNodeTest, EveryOptionIsReachableAndTheFlatFlagsSetTheFollower) {
   const auto keys = ExpectEveryOptionReachable<WaypointDriverOptions>(
       WaypointDriverOptions(), [](ConfigSchema& s, WaypointDriverOptions& o) { DeclareOptions(s, o); });
-  // stations, pose_source, the three channels, rate, dwell, exit_when_done, and the
-  // follower's 7 (WaypointFollowerOptions).
-  EXPECT_EQ(keys.size(), 8u + 7u);
+  // stations, the two channels, rate, dwell, exit_when_done, and the follower's 7
+  // (WaypointFollowerOptions).
+  EXPECT_EQ(keys.size(), 6u + 7u);
+  for (const std::string& k : keys) EXPECT_EQ(k.find("truth"), std::string::npos) << k;
   WaypointDriverOptions o;
   ConfigSchema s("waypoint_driver", "test");
   DeclareOptions(s, o);

@@ -20,9 +20,10 @@ std::vector<Segment> ContourMapSegments(const ContourMapMessage& map) {
 MapUpdates::MapUpdates(Bus& bus, const std::string& line_channel, const std::string& contour_channel,
                        Handler on_new_map)
     : on_new_map_(std::move(on_new_map)) {
-  Subscribe<line_map_t>(bus, line_channel, [this, line_channel](const line_map_t& m) {
-    Offer(SegmentsFromLcm(m), line_channel + " '" + m.name + "' version " + std::to_string(m.version));
-  });
+  if (!line_channel.empty())
+    Subscribe<line_map_t>(bus, line_channel, [this, line_channel](const line_map_t& m) {
+      Offer(SegmentsFromLcm(m), line_channel + " '" + m.name + "' version " + std::to_string(m.version));
+    });
   if (contour_channel.empty()) return;
   Subscribe<contour_map_t>(bus, contour_channel, [this, contour_channel](const contour_map_t& m) {
     Offer(ContourMapSegments(ContourMapFromLcm(m)), contour_channel + " version " + std::to_string(m.version));

@@ -23,7 +23,8 @@ class MapUpdates {
   // `what` names the map in logs and errors ("LINE_MAP 'mine' version 3").
   using Handler = std::function<void(const std::vector<Segment>& segments, const std::string& what)>;
 
-  // Subscribes to line_channel and, unless it is empty, contour_channel. The object must
+  // Subscribes to line_channel and contour_channel, each unless it is empty (the path
+  // tracker follows the contour map alone). The object must
   // outlive the bus's dispatching (the subscriptions refer to it).
   MapUpdates(Bus& bus, const std::string& line_channel, const std::string& contour_channel, Handler on_new_map);
   MapUpdates(const MapUpdates&) = delete;

@@ -59,6 +59,14 @@ Pose2 At(const Pose2& a, const Pose2& b, const PieceGeometry& g, double f) {
 
 }  // namespace
 
+double PoseClearance(const std::vector<Segment>& map, const std::vector<Eigen::Vector2d>& polygon, const Pose2& pose) {
+  std::vector<Eigen::Vector2d> poly(polygon.size());
+  for (size_t v = 0; v < poly.size(); ++v) poly[v] = pose * polygon[v];
+  double d = std::numeric_limits<double>::infinity();
+  for (const Segment& s : map) d = std::min(d, PolygonToSegment(poly, s));
+  return d;
+}
+
 PathCheckReport CheckPath(const std::vector<Segment>& map, const Pose2& start, const std::vector<CheckedPiece>& pieces,
                           const PathCheckSettings& st) {
   PathCheckReport report;

@@ -40,6 +40,10 @@ struct PathCheckSettings {
   double pose_tolerance = 1e-5;          // m and rad, for the motion checks
 };
 
+// m, least distance from `polygon` (vehicle frame) at `pose` to any segment of `map`, by brute
+// force (0 on contact): the same judge, for poses a vehicle drove rather than planned ones.
+double PoseClearance(const std::vector<Segment>& map, const std::vector<Eigen::Vector2d>& polygon, const Pose2& pose);
+
 PathCheckReport CheckPath(const std::vector<Segment>& map, const Pose2& start, const std::vector<CheckedPiece>& pieces,
                           const PathCheckSettings& settings);
 

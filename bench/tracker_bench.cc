@@ -1,0 +1,115 @@
+// The path tracker (tracker/README.md, issue 14, "Measured in simulation"): the tracker in a
+// closed loop on vehicle_sim's miner (tracker/testing/closed_loop.h): skid-steer kinematics
+// and limits, odometry with drift, wheel slip the odometry misses, pose estimates from a
+// noisy source (the truth plus 1 cm / 0.11 deg Gaussian noise, 0.3 s late) at 1, 0.5 and
+// 0.2 Hz. Paths from the SE(2) planner (clearance 0.15 m): a straight entry, a box cut and a
+// slab cut at a face in a generated room-and-pillar mine, a multi-point turn at a crossing of
+// 6.5 m entries. Two speed settings: cruise 0.076 m/s (the miner) and fast 0.5 m/s. Side by
+// side: plain pure pursuit (tracker.regulated = false: cruise everywhere) and ours (regulated).
+// Per cell the medians over the seeds: cross-track RMS and max, heading error max, final pose
+// error (true pose against the goal), time, turn-in-place corrections; and how many runs
+// ended done, blocked, or in contact with the TRUE walls (brute force).
+//
+//   tracker_bench [--seeds 3] [--json_out FILE]
+
+#include <cstdio>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "bench/bench_util.h"
+#include "common/angle.h"
+#include "common/config.h"
+#include "tracker/testing/closed_loop.h"
+
+namespace minenav {
+namespace {
+
+struct Cell {
+  std::vector<double> ct_rms, ct_max, heading_max, final_pos, final_heading, time, corrections;
+  int runs = 0, done = 0, blocked = 0, contact = 0, jumps = 0;
+  std::vector<std::string> messages;  // how each run ended
+};
+
+int Run(int argc, char** argv) {
+  int seeds = 3;
+  std::string json_out;
+  double latency = 0.3;
+  ConfigSchema schema("tracker_bench", "The path tracker in a closed loop on the simulated miner.");
+  schema.AddInt("seeds", &seeds, "runs per cell (noise seeds 1..n)", 1, 100);
+  schema.AddDouble("latency", &latency, "s", "delay of each pose estimate after its scan", 0.0, 10.0);
+  schema.AddString("json_out", &json_out, "write the results as JSON to this file ('' = none)");
+  if (schema.Parse(argc, argv) == ParseOutcome::kExit) return 0;
+
+  const Footprint miner = Footprint::Rectangle(3.3, 10.0);
+  nlohmann::json rows = nlohmann::json::array();
+  std::printf("%-18s %-6s %-5s %-9s | %6s %6s %6s %6s %6s %7s %5s | %s\n", "scenario", "speed", "Hz", "tracker",
+              "ctRMS", "ctMax", "hdMax", "endPos", "endHd", "time", "corr", "done/blocked/contact of runs");
+  std::printf("%-18s %-6s %-5s %-9s | %6s %6s %6s %6s %6s %7s %5s |\n", "", "m/s", "", "", "cm", "cm", "deg", "cm", "deg",
+              "s", "");
+  for (const std::string& name : testing::ScenarioNames()) {
+    const testing::TrackingScenario s = testing::MakeScenario(name, 0.15);
+    if (!s.error.empty()) throw std::runtime_error(s.error);
+    for (const double speed : {0.076, 0.5}) {
+      for (const double rate : {1.0, 0.5, 0.2}) {
+        for (const bool regulated : {false, true}) {
+          Cell c;
+          for (int seed = 1; seed <= seeds; ++seed) {
+            testing::ClosedLoopOptions o;
+            o.seed = static_cast<uint64_t>(seed);
+            o.pose_rate = rate;
+            o.pose_latency = latency;
+            o.tracker.regulated = regulated;
+            o.tracker.cruise_speed = speed;
+            if (speed > 0.1) {
+              // The fast setting: the vehicle's limits scaled up with the speed.
+              o.vehicle.max_forward_speed = o.vehicle.max_reverse_speed = speed;
+              o.vehicle.max_turn_in_place_rate = 0.2;
+              o.vehicle.max_acceleration = 0.25;
+              o.vehicle.max_deceleration = 0.5;
+              o.vehicle.max_yaw_acceleration = 0.2;
+              o.tracker.turn_rate = 0.2;
+              o.tracker.deceleration = o.vehicle.max_deceleration;
+            }
+            const testing::ClosedLoopResult r = testing::RunClosedLoop(s.world, s.world, s.path, miner, o);
+            ++c.runs;
+            c.done += r.state == TrackState::kDone;
+            c.blocked += r.state == TrackState::kBlocked;
+            c.contact += r.contact;
+            c.jumps += r.jumps;
+            c.ct_rms.push_back(100 * r.cross_track_rms);
+            c.ct_max.push_back(100 * r.cross_track_max);
+            c.heading_max.push_back(RadToDeg(r.heading_max));
+            c.final_pos.push_back(100 * r.final_position_error);
+            c.final_heading.push_back(RadToDeg(r.final_heading_error));
+            c.time.push_back(r.time);
+            c.corrections.push_back(r.corrections);
+            c.messages.push_back(r.message);
+          }
+          const char* mode = regulated ? "regulated" : "plain";
+          std::printf("%-18s %-6.3f %-5.1f %-9s | %6.2f %6.2f %6.2f %6.2f %6.2f %7.1f %5.0f | %d/%d/%d of %d\n",
+                      name.c_str(), speed, rate, mode, bench::Median(c.ct_rms), bench::Median(c.ct_max),
+                      bench::Median(c.heading_max), bench::Median(c.final_pos), bench::Median(c.final_heading),
+                      bench::Median(c.time), bench::Median(c.corrections), c.done, c.blocked, c.contact, c.runs);
+          rows.push_back({{"scenario", name}, {"speed", speed}, {"pose_rate", rate}, {"tracker", mode},
+                          {"path_length_m", s.path.Length()}, {"reversals", s.path.Reversals()},
+                          {"cross_track_rms_cm", c.ct_rms}, {"cross_track_max_cm", c.ct_max},
+                          {"heading_max_deg", c.heading_max}, {"final_position_cm", c.final_pos},
+                          {"final_heading_deg", c.final_heading}, {"time_s", c.time},
+                          {"corrections", c.corrections}, {"runs", c.runs}, {"done", c.done},
+                          {"blocked", c.blocked}, {"contact", c.contact}, {"jumps_reported", c.jumps},
+                          {"messages", c.messages}});
+          std::fflush(stdout);
+        }
+      }
+    }
+  }
+  bench::WriteJson(json_out, {{"bench", "tracker_bench"}, {"seeds", seeds}, {"latency_s", latency}, {"rows", rows}});
+  return 0;
+}
+
+}  // namespace
+}  // namespace minenav
+
+int main(int argc, char** argv) { return minenav::bench::RunBenchMain("tracker_bench", minenav::Run, argc, argv); }
