@@ -105,34 +105,6 @@ std::string ValidateRequest(const path_request_t& r, const PathPlannerNodeOption
   return "";
 }
 
-path_t NoPathToLcm(int64_t request_id, int64_t utime, const std::string& status) {
-  path_t m{};
-  m.utime = utime;
-  m.request_id = request_id;
-  m.feasible = false;
-  m.status = status;
-  m.num_segments = 0;
-  m.length = 0.0;
-  return m;
-}
-
-path_t PathToLcm(const PlannedPath& path, int64_t request_id, int64_t utime, double speed, const std::string& status) {
-  path_t m = NoPathToLcm(request_id, utime, status);
-  m.feasible = true;
-  m.start = ToLcm(path.start);
-  for (const MotionPiece& p : path.pieces) {
-    path_segment_t s{};
-    s.motion = static_cast<int8_t>(p.motion);
-    s.end = ToLcm(p.end);
-    s.radius = p.radius;
-    s.speed = speed;
-    m.segments.push_back(s);
-  }
-  m.num_segments = static_cast<int32_t>(m.segments.size());
-  m.length = path.Length();
-  return m;
-}
-
 PathPlannerNode::PathPlannerNode(NodeRuntime& runtime, PathPlannerNodeOptions options, Footprint footprint)
     : runtime_(runtime),
       options_(std::move(options)),

@@ -35,6 +35,7 @@
 #include "minenav/contour_map_t.hpp"
 #include "minenav/path_request_t.hpp"
 #include "minenav/path_t.hpp"
+#include "planner/path_message.h"  // PathToLcm, NoPathToLcm
 #include "planner/contour_free_space.h"
 #include "planner/footprint.h"
 #include "planner/motion.h"
@@ -67,11 +68,6 @@ std::string ValidateOptions(const PathPlannerNodeOptions& options);
 
 // "" when the request can be planned, else the one-line reason (NaN, tolerances, clearance).
 std::string ValidateRequest(const path_request_t& request, const PathPlannerNodeOptions& options);
-
-// The path as path_t segments (motion, end pose, radius, speed) tagged with request_id.
-path_t PathToLcm(const PlannedPath& path, int64_t request_id, int64_t utime, double speed, const std::string& status);
-// An answer without a path.
-path_t NoPathToLcm(int64_t request_id, int64_t utime, const std::string& status);
 
 class PathPlannerNode {
  public:

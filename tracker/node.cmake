@@ -7,8 +7,8 @@ target_link_libraries(waypoint_driver PRIVATE minenav_waypoint_driver_node)
 
 minenav_test(NAME waypoint_driver_node_test SOURCES waypoint_driver_node_test.cc LIBS minenav_waypoint_driver_node)
 
-minenav_node_library(minenav_path_tracker_node path_tracker_node.cc path_message.cc)
-target_link_libraries(minenav_path_tracker_node PUBLIC minenav_tracker minenav_node)
+minenav_node_library(minenav_path_tracker_node path_tracker_node.cc)
+target_link_libraries(minenav_path_tracker_node PUBLIC minenav_tracker minenav_path_message minenav_node)
 
 minenav_executable(path_tracker path_tracker_main.cc)
 target_link_libraries(path_tracker PRIVATE minenav_path_tracker_node)

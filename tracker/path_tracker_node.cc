@@ -15,7 +15,7 @@
 #include "minenav/path_t.hpp"
 #include "minenav/pose_estimate_t.hpp"
 #include "minenav/task_status_t.hpp"
-#include "tracker/path_message.h"
+#include "planner/path_message.h"
 
 namespace minenav {
 namespace {

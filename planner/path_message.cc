@@ -1,4 +1,4 @@
-#include "tracker/path_message.h"
+#include "planner/path_message.h"
 
 #include <cmath>
 #include <string>
@@ -51,12 +51,20 @@ PathMessage PathFromLcm(const path_t& m, double turn_radius) {
   return out;
 }
 
-path_t PathToLcm(const PlannedPath& path, int64_t request_id, int64_t utime, double speed, const std::string& status) {
+path_t NoPathToLcm(int64_t request_id, int64_t utime, const std::string& status) {
   path_t m{};
   m.utime = utime;
   m.request_id = request_id;
-  m.feasible = true;
+  m.feasible = false;
   m.status = status;
+  m.num_segments = 0;
+  m.length = 0.0;
+  return m;
+}
+
+path_t PathToLcm(const PlannedPath& path, int64_t request_id, int64_t utime, double speed, const std::string& status) {
+  path_t m = NoPathToLcm(request_id, utime, status);
+  m.feasible = true;
   m.start = ToLcm(path.start);
   for (const MotionPiece& p : path.pieces) {
     path_segment_t s{};

@@ -1,5 +1,6 @@
 #pragma once
-// path_t (lcmtypes/path_t.lcm) <-> the planner's PlannedPath (planner/motion.h). A piece's
+// path_t (lcmtypes/path_t.lcm) <-> the planner's PlannedPath (used by the path_planner and
+// the path_tracker nodes) (planner/motion.h). A piece's
 // amount is not on the wire: it is recovered from the poses (the distance for straight moves,
 // radius times the heading change for arcs, the heading change for turns in place), and the
 // piece is checked to be that motion between its poses (PoseAfter within 2 cm and 0.5 deg).
@@ -24,8 +25,9 @@ struct PathMessage {
 // turn_radius (m): arcs must have it (within 1 %).
 PathMessage PathFromLcm(const path_t& m, double turn_radius);
 // The path as path_t segments (motion, end pose, radius, speed: m/s, every segment's limit)
-// tagged with request_id. The same signature as the live path_planner's (planner/
-// path_planner_node.h, branch of issue 13): one of the two goes when both are merged.
+// tagged with request_id: what the live path_planner publishes.
 path_t PathToLcm(const PlannedPath& path, int64_t request_id, int64_t utime, double speed, const std::string& status);
+// The answer without a path (feasible false; status says why).
+path_t NoPathToLcm(int64_t request_id, int64_t utime, const std::string& status);
 
 }  // namespace minenav
