@@ -194,10 +194,10 @@ CutterState Cutterhead::State(int64_t now) const {
 }
 
 double SolidArea(const World& world, const Pose2& frame, double x0, double x1, double half_width,
-                 const Eigen::Vector2d& free_point, double step) {
-  if (!(step > 0.0) || !(x1 > x0) || !(half_width > 0.0)) return 0.0;
-  const int nx = std::max(1, static_cast<int>(std::ceil((x1 - x0) / step)));
-  const int ny = std::max(1, static_cast<int>(std::ceil(2.0 * half_width / step)));
+                 const Eigen::Vector2d& free_point, double step_x, double step_y) {
+  if (!(step_x > 0.0) || !(step_y > 0.0) || !(x1 > x0) || !(half_width > 0.0)) return 0.0;
+  const int nx = std::max(1, static_cast<int>(std::ceil((x1 - x0) / step_x)));
+  const int ny = std::max(1, static_cast<int>(std::ceil(2.0 * half_width / step_y)));
   const double dx = (x1 - x0) / nx, dy = 2.0 * half_width / ny;
   int solid = 0;
   for (int i = 0; i < nx; ++i)

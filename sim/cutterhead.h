@@ -85,8 +85,9 @@ class Cutterhead {
 };
 
 // m^2 of the rectangle [x0, x1] x [-half_width, half_width] in the frame of `frame` that is
-// solid in `world` (not in the same space as `free_point`), sampled on a `step` grid.
+// solid in `world` (not in the same space as `free_point`), sampled every `step_x` m along x
+// and `step_y` m across.
 double SolidArea(const World& world, const Pose2& frame, double x0, double x1, double half_width,
-                 const Eigen::Vector2d& free_point, double step = 0.05);
+                 const Eigen::Vector2d& free_point, double step_x = 0.01, double step_y = 0.1);
 
 }  // namespace minenav

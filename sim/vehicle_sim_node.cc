@@ -86,12 +86,12 @@ VehicleSimNode::VehicleSimNode(NodeRuntime& runtime, const VehicleSimNodeOptions
     cutter_.Command(*c, vehicle_.pose(), runtime_.NowUtime());
     PublishCutterState(runtime_.NowUtime());
   });
-  runtime_.AddTimer(options_.cutter_state_period, [this](int64_t now) { PublishCutterState(now); });
   // The world first, so a ladar starting with us has it before the first truth sample.
   runtime_.AddTimer(options_.sim.map_period, [this](int64_t now) {
     if (!ChangeWorld(now)) PublishWorld(now);
   });
   runtime_.AddTimer(1.0 / options_.sim.rate, [this](int64_t now) { Tick(now); });
+  runtime_.AddTimer(options_.cutter_state_period, [this](int64_t now) { PublishCutterState(now); });
 }
 
 void VehicleSimNode::PublishWorld(int64_t now) {
