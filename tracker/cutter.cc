@@ -333,6 +333,7 @@ Cutter::Output Cutter::Update(int64_t now, const std::optional<StampedPose>& pos
       if (DepthAt(*predicted) >= cycle_target_) {
         Enter(Step::kShear, now);
         confirmed_.reset();
+        down_since_.reset();
         break;
       }
       if (TranslationDistance(pose->pose, stall_ref_->pose) > options_.stall_distance) {
@@ -358,9 +359,14 @@ Cutter::Output Cutter::Update(int64_t now, const std::optional<StampedPose>& pos
         ++status_.cycles;
         cusp_start_ = pose->pose;
         Enter(Step::kCusp, now);
-      } else if (down && Seconds(now, step_since_) > options_.max_pose_age + 1.0 && !confirmed_) {
-        Fail("stopped: no pose estimate confirmed the depth after the shear");
-        return Update(now, pose, state);
+      } else if (down) {
+        // A scan taken after the stop may still be on its way: wait for it as long as a
+        // pose may be old, and a second more.
+        if (!down_since_) down_since_ = now;
+        if (Seconds(now, *down_since_) > options_.max_pose_age + 1.0) {
+          Fail("stopped: no pose estimate confirmed the depth after the shear");
+          return Update(now, pose, state);
+        }
       }
       break;
     }

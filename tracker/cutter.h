@@ -146,6 +146,7 @@ class Cutter {
   bool stop_sent_ = false;
   int64_t seq_ = 0;
   std::optional<double> confirmed_;     // depth confirmed during this shear
+  std::optional<int64_t> down_since_;   // the shear reached the floor
   std::optional<StampedPose> stall_ref_;
   std::optional<Pose2> cusp_start_;
   std::deque<OdometryReading> odometry_;
