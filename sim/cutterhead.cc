@@ -2,20 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
 
 #include "common/config.h"
 
 namespace minenav {
 namespace {
-
-std::string Fixed(double v, int digits = 2) {
-  std::ostringstream os;
-  os.setf(std::ios::fixed);
-  os.precision(digits);
-  os << v;
-  return os.str();
-}
 
 bool Moving(const DriveCommand& c) {
   if (c.mode == DriveCommand::Mode::kStop) return false;
@@ -146,8 +137,8 @@ DriveCommand Cutterhead::FilterDrive(const DriveCommand& c, const Pose2& pose, c
   }
   const bool backing_with_drum = drum_on_ && c.mode == DriveCommand::Mode::kVelocity && c.v < 0.0;
   if (boom_ < options_.tram_height && !backing_with_drum) {
-    Refuse("DRIVE: no tramming with the head down (boom " + Fixed(boom_) + " m, below " +
-               Fixed(options_.tram_height) + " m)",
+    Refuse("DRIVE: no tramming with the head down (boom " + CutterNumber(boom_) + " m, below " +
+               CutterNumber(options_.tram_height) + " m)",
            now);
     return Stopped(c);
   }

@@ -1,7 +1,6 @@
 #include "tracker/cutter.h"
 
 #include <cmath>
-#include <sstream>
 #include <utility>
 
 #include <Eigen/Eigenvalues>
@@ -13,14 +12,6 @@
 
 namespace minenav {
 namespace {
-
-std::string Fixed(double v, int digits = 2) {
-  std::ostringstream os;
-  os.setf(std::ios::fixed);
-  os.precision(digits);
-  os << v;
-  return os.str();
-}
 
 double Seconds(int64_t later, int64_t earlier) { return static_cast<double>(later - earlier) * 1e-6; }
 
@@ -157,13 +148,13 @@ std::string Cutter::Start(const CutTask& task, const std::optional<StampedPose>&
   if (!std::isfinite(task.depth) || task.depth <= 0.0) return refuse("refused: the depth of cut must be positive");
   if (!pose) return refuse("refused: no pose estimate yet");
   if (Seconds(now, pose->utime) > options_.max_pose_age)
-    return refuse("refused: the pose estimate is " + Fixed(Seconds(now, pose->utime), 1) + " s old (limit " +
-                  Fixed(options_.max_pose_age, 1) + " s)");
+    return refuse("refused: the pose estimate is " + CutterNumber(Seconds(now, pose->utime), 1) + " s old (limit " +
+                  CutterNumber(options_.max_pose_age, 1) + " s)");
   const Pose2 p = Predict(*pose).value_or(pose->pose);
   std::optional<Segment> face = task.face;
   if (!face) face = FindFace(map, p, options_);
   if (!face)
-    return refuse("refused: no face in reach: nothing in the map within " + Fixed(options_.max_face_distance, 1) +
+    return refuse("refused: no face in reach: nothing in the map within " + CutterNumber(options_.max_face_distance, 1) +
                   " m ahead of the cutterhead");
   face_ = *face;
   const Eigen::Vector2d d = face_.direction().normalized();
@@ -177,14 +168,14 @@ std::string Cutter::Start(const CutTask& task, const std::optional<StampedPose>&
   if (foot.region != SegmentRegion::kInterior)
     return refuse("refused: no face in reach: the face line does not lie ahead of the vehicle");
   if (gap > options_.max_face_distance)
-    return refuse("refused: no face in reach: the face is " + Fixed(gap) + " m ahead of the cutterhead (reach " +
-                  Fixed(options_.max_face_distance) + " m)");
-  if (gap < -0.5) return refuse("refused: the cutterhead is already " + Fixed(-gap) + " m past the face");
+    return refuse("refused: no face in reach: the face is " + CutterNumber(gap) + " m ahead of the cutterhead (reach " +
+                  CutterNumber(options_.max_face_distance) + " m)");
+  if (gap < -0.5) return refuse("refused: the cutterhead is already " + CutterNumber(-gap) + " m past the face");
   if (off > options_.max_square_angle)
-    return refuse("refused: the face is " + Fixed(RadToDeg(off), 1) + " deg off the heading (at most " +
-                  Fixed(RadToDeg(options_.max_square_angle), 1) + " deg)");
+    return refuse("refused: the face is " + CutterNumber(RadToDeg(off), 1) + " deg off the heading (at most " +
+                  CutterNumber(RadToDeg(options_.max_square_angle), 1) + " deg)");
   status_.state = CutterStatus::State::kActive;
-  status_.message = "cutting " + Fixed(task.depth) + " m";
+  status_.message = "cutting " + CutterNumber(task.depth) + " m";
   started_ = now;
   stop_sent_ = false;
   confirmed_.reset();
@@ -263,7 +254,7 @@ Cutter::Output Cutter::Update(int64_t now, const std::optional<StampedPose>& pos
   // Safety first: the appendages' state, refusals, the pose's age while moving.
   if (!state || Seconds(now, state->utime) > options_.state_timeout) {
     if (Seconds(now, started_) > options_.state_timeout) {
-      Fail("stopped: no CUTTER_STATE for " + Fixed(options_.state_timeout, 1) + " s");
+      Fail("stopped: no CUTTER_STATE for " + CutterNumber(options_.state_timeout, 1) + " s");
       return Update(now, pose, state);
     }
     return out;
@@ -277,8 +268,8 @@ Cutter::Output Cutter::Update(int64_t now, const std::optional<StampedPose>& pos
   if (moving_step) {
     const double age = pose ? Seconds(now, pose->utime) : INFINITY;
     if (age > options_.max_pose_age) {
-      Fail("stopped: the pose estimate is " + (pose ? Fixed(age, 1) + " s" : std::string("missing")) + " old while " +
-           StepName(step_) + " (limit " + Fixed(options_.max_pose_age, 1) + " s)");
+      Fail("stopped: the pose estimate is " + (pose ? CutterNumber(age, 1) + " s" : std::string("missing")) + " old while " +
+           StepName(step_) + " (limit " + CutterNumber(options_.max_pose_age, 1) + " s)");
       return Update(now, pose, state);
     }
   }
@@ -341,7 +332,7 @@ Cutter::Output Cutter::Update(int64_t now, const std::optional<StampedPose>& pos
         stall_ref_->utime = now;
       } else if (Seconds(now, stall_ref_->utime) > options_.stall_time) {
         Fail("stopped: the face does not advance: " +
-             Fixed(TranslationDistance(pose->pose, stall_ref_->pose)) + " m in " + Fixed(options_.stall_time, 1) +
+             CutterNumber(TranslationDistance(pose->pose, stall_ref_->pose)) + " m in " + CutterNumber(options_.stall_time, 1) +
              " s of sumping");
         return Update(now, pose, state);
       }
@@ -385,8 +376,8 @@ Cutter::Output Cutter::Update(int64_t now, const std::optional<StampedPose>& pos
         if (status_.depth >= status_.target - options_.depth_tolerance) {
           Enter(Step::kFinish, now);
         } else if (status_.cycles >= options_.max_cycles) {
-          Fail("stopped: " + std::to_string(status_.cycles) + " cycles reached only " + Fixed(status_.depth) +
-               " m of " + Fixed(status_.target) + " m");
+          Fail("stopped: " + std::to_string(status_.cycles) + " cycles reached only " + CutterNumber(status_.depth) +
+               " m of " + CutterNumber(status_.target) + " m");
           return Update(now, pose, state);
         } else {
           cycle_target_ = std::min(status_.depth + options_.sump_step, status_.target);
@@ -398,7 +389,7 @@ Cutter::Output Cutter::Update(int64_t now, const std::optional<StampedPose>& pos
       out.cutter = Send(A::kDrumOff, 0, now);
       if (!state->drum_on && state->utime > step_since_) {
         status_.state = CutterStatus::State::kDone;
-        status_.message = "cut " + Fixed(status_.depth) + " m deep (target " + Fixed(status_.target) + " m) in " +
+        status_.message = "cut " + CutterNumber(status_.depth) + " m deep (target " + CutterNumber(status_.target) + " m) in " +
                           std::to_string(status_.cycles) + " cycles";
         step_ = Step::kEnded;
         status_.step = StepName(step_);

@@ -19,6 +19,7 @@
 #include "common/node/contour_map_conversions.h"
 #include "common/node/conversions.h"
 #include "common/node/lcm_bus.h"
+#include "common/node/map_updates.h"
 #include "minenav/contour_map_t.hpp"
 #include "minenav/cutter_command_t.hpp"
 #include "minenav/cutter_state_t.hpp"
@@ -45,16 +46,6 @@ std::vector<Segment> Rect(double x0, double y0, double x1, double y1) {
 double FaceX(const std::vector<Segment>& walls, double y) {
   const auto hit = CastRay(Eigen::Vector2d(4.0, y), 0.0, walls, 100.0);
   return hit ? 4.0 + hit->range : -1.0;
-}
-
-std::vector<Segment> MapSegments(const contour_map_t& m) {
-  std::vector<Segment> out;
-  for (const ContourPolyline& c : ContourMapFromLcm(m).contours) {
-    const size_t n = c.points.size();
-    for (size_t k = 0; k + 1 < n; ++k) out.emplace_back(c.points[k], c.points[k + 1]);
-    if (c.closed && n >= 3) out.emplace_back(c.points[n - 1], c.points[0]);
-  }
-  return out;
 }
 
 using CutterBusTest = testing::PrivateBusTest;
@@ -134,7 +125,7 @@ TEST_F(CutterBusTest, ABoxCutEndsWithinFiveCentimetresInTheWorldAndInTheLiveMap)
   ASSERT_TRUE(Pump(bus, 20.0, [&] { return map && map->utime > done_at + 8'000'000; })) << logs();
   ASSERT_TRUE(sim_world.has_value());
   const std::vector<Segment> truth = SegmentsFromLcm(*sim_world);
-  const std::vector<Segment> mapped = MapSegments(*map);
+  const std::vector<Segment> mapped = ContourMapSegments(ContourMapFromLcm(*map));
   std::cout << status.back().message << "\n";
   for (double y : {-1.2, 0.0, 1.2}) {
     std::cout << "y " << y << ": true depth " << FaceX(truth, y) - kFaceX << " m, in the contour map "

@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <sstream>
 #include <string>
 
 #include "common/geometry.h"
@@ -36,6 +37,15 @@ struct CutterState {
   double coal_removed = 0.0;   // m^2 of plan area cut so far
   std::string message;         // one line; "refused ...: reason" after a refused command
 };
+
+// A number as the one-line reasons of both sides write it: fixed, `digits` decimals.
+inline std::string CutterNumber(double v, int digits = 2) {
+  std::ostringstream os;
+  os.setf(std::ios::fixed);
+  os.precision(digits);
+  os << v;
+  return os.str();
+}
 
 inline const char* ToString(CutterCommand::Action a) {
   switch (a) {

@@ -8,6 +8,7 @@
 #include "common/node/bus.h"
 #include "common/node/contour_map_conversions.h"
 #include "common/node/conversions.h"
+#include "common/node/map_updates.h"
 #include "minenav/contour_map_t.hpp"
 #include "minenav/cutter_command_t.hpp"
 #include "minenav/cutter_state_t.hpp"
@@ -61,14 +62,7 @@ CutterNode::CutterNode(NodeRuntime& runtime, const CutterNodeOptions& options)
     state_ = std::move(s);
   });
   Subscribe<contour_map_t>(runtime_.bus(), options_.map_channel, [this](const contour_map_t& m) {
-    const ContourMapMessage map = ContourMapFromLcm(m);
-    std::vector<Segment> segments;
-    for (const ContourPolyline& c : map.contours) {
-      const size_t n = c.points.size();
-      for (size_t k = 0; k + 1 < n; ++k) segments.emplace_back(c.points[k], c.points[k + 1]);
-      if (c.closed && n >= 3) segments.emplace_back(c.points[n - 1], c.points[0]);
-    }
-    map_ = std::move(segments);
+    map_ = ContourMapSegments(ContourMapFromLcm(m));
   });
   Subscribe<cutter_command_t>(runtime_.bus(), options_.task_channel, [this](const cutter_command_t& m) {
     std::string why;
