@@ -39,5 +39,5 @@ if(TARGET vehicle_sim AND TARGET ladar_driver AND TARGET contour_mapper)
   add_dependencies(cutter_bus_test vehicle_sim ladar_driver contour_mapper cutter)
   add_test(NAME bus.cutter_box_cut
     COMMAND "${CMAKE_SOURCE_DIR}/tests/bus/private_net.sh" --port 7820 -- $<TARGET_FILE:cutter_bus_test>)
-  set_tests_properties(bus.cutter_box_cut PROPERTIES TIMEOUT 240 LABELS bus)
+  set_tests_properties(bus.cutter_box_cut PROPERTIES TIMEOUT 300 LABELS bus)
 endif()
