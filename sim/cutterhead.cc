@@ -63,6 +63,7 @@ void Cutterhead::Refuse(const std::string& why, int64_t now) {
 
 void Cutterhead::Command(const CutterCommand& c, const Pose2& pose, int64_t now) {
   using A = CutterCommand::Action;
+  if (c.action != A::kIdle) engaged_ = true;
   switch (c.action) {
     case A::kIdle:
       return;
@@ -142,7 +143,7 @@ DriveCommand Cutterhead::FilterDrive(const DriveCommand& c, const Pose2& pose, c
            now);
     return Stopped(c);
   }
-  if (!drum_on_ && c.mode == DriveCommand::Mode::kVelocity && c.v > 0.0 && InContact(pose, world)) {
+  if (engaged_ && !drum_on_ && c.mode == DriveCommand::Mode::kVelocity && c.v > 0.0 && InContact(pose, world)) {
     Refuse("DRIVE: no sump without the drum turning (the drum touches the face)", now);
     return Stopped(c);
   }

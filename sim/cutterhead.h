@@ -14,7 +14,10 @@
 //   - the tracks stay stopped while shearing;
 //   - the drum cannot be driven into the face without turning (the simulator has no contact
 //     model otherwise: a forward command with the drum off and a wall within `contact_margin`
-//     ahead of the drum is refused and the vehicle stops).
+//     ahead of the drum is refused and the vehicle stops). This one holds once the
+//     appendages have been commanded (any command but IDLE): a vehicle nobody cuts with
+//     keeps the plain kinematics of before (surveys drive the pose, a point, up to walls
+//     the 10 m miner's front would be in).
 // Plain C++: no LCM, no clock; the node (sim/vehicle_sim_node.h) feeds it.
 
 #include <Eigen/Core>
@@ -75,6 +78,7 @@ class Cutterhead {
   CutterheadOptions options_;
   CutterState::Phase phase_ = CutterState::Phase::kIdle;
   bool drum_on_ = false;
+  bool engaged_ = false;  // a command other than IDLE has come
   double boom_ = 0.0;
   double boom_target_ = 0.0;
   double sumped_ = 0.0;

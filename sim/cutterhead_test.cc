@@ -66,11 +66,15 @@ TEST(CutterheadTest, NoTrammingWithTheHeadDownButBackingOverTheCuspIsAllowed) {
 TEST(CutterheadTest, TheDrumCannotBeDrivenIntoTheFaceWithoutTurning) {
   const World w = Entry();
   Cutterhead head({}, 2.4);
+  // Not engaged yet (no cutter command): the plain kinematics of before.
+  EXPECT_EQ(head.FilterDrive(Forward(0.02), Pose2(11, 0, 0), w, kT0).mode, DriveCommand::Mode::kVelocity);
+  head.Command(Cmd(CutterCommand::Action::kDrumOff), Pose2(11, 0, 0), kT0);
   // Drum front at x = 11 + 5 = 16: touching the face.
   EXPECT_EQ(head.FilterDrive(Forward(0.02), Pose2(11, 0, 0), w, kT0).mode, DriveCommand::Mode::kStop);
   EXPECT_EQ(head.State(kT0).message, "refused DRIVE: no sump without the drum turning (the drum touches the face)");
   // 10 cm short of it: free to tram.
   Cutterhead free({}, 2.4);
+  free.Command(Cmd(CutterCommand::Action::kDrumOff), Pose2(10.9, 0, 0), kT0);
   EXPECT_EQ(free.FilterDrive(Forward(0.02), Pose2(10.9, 0, 0), w, kT0).mode, DriveCommand::Mode::kVelocity);
   EXPECT_EQ(free.State(kT0).message, "");
   head.Command(Cmd(CutterCommand::Action::kDrumOn), Pose2(11, 0, 0), kT0);
