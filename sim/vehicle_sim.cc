@@ -35,6 +35,7 @@ void DeclareOptions(OptionScope s, VehicleSimOptions& o) {
   s.AddDouble("map_period", &o.map_period, "s", "republish SIM_WORLD and LINE_MAP this often", 0.05, 3600.0);
   DeclareOptions(s.Nested("vehicle"), o.vehicle);
   DeclareOptions(s.Nested("odometry"), o.odometry);
+  DeclareOptions(s.Nested("cutterhead"), o.cutterhead);
 }
 
 std::vector<std::string> TakeWorldFlags(std::vector<std::string>* args) {
@@ -68,6 +69,7 @@ ScenarioOptions GeneratorOptions(const VehicleSimOptions& o) {
 void ValidateVehicleSimOptions(const VehicleSimOptions& o) {
   if (std::string why = ValidateSkidSteerOptions(o.vehicle); !why.empty()) throw UsageError(why);
   if (std::string why = ValidateOdometryErrorOptions(o.odometry); !why.empty()) throw UsageError(why);
+  if (std::string why = ValidateCutterheadOptions(o.cutterhead); !why.empty()) throw UsageError(why);
 }
 
 std::optional<Pose2> StartPose(const VehicleSimOptions& o) {
@@ -95,6 +97,12 @@ bool WorldTimeline::Advance(int64_t now) {
     changed = true;
   }
   return changed;
+}
+
+bool WorldTimeline::Edit(const std::function<bool(minenav::World*)>& edit) {
+  if (!edit(&world_)) return false;
+  ++map_version_;
+  return true;
 }
 
 MapSnapshot WorldTimeline::World() const {

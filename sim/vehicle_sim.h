@@ -4,6 +4,7 @@
 // the miner stepped over clock time with its dead-reckoned odometry (App. D, 6.4).
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -11,6 +12,7 @@
 #include "common/geometry.h"
 #include "common/pose2.h"
 #include "common/vehicle_state.h"
+#include "sim/cutterhead.h"
 #include "sim/odometry_model.h"
 #include "sim/scenario.h"
 #include "sim/skid_steer.h"
@@ -42,6 +44,8 @@ struct VehicleSimOptions {
                                 .heading_drift_per_second = 0.0,
                                 .translation_noise = 0.005,
                                 .rotation_noise = 0.002};
+  // The cutter appendages (thesis 6.4.1; sim/cutterhead.h); the boom starts at its top.
+  CutterheadOptions cutterhead;
 };
 
 class OptionScope;
@@ -84,6 +88,10 @@ class WorldTimeline {
   size_t size() const { return world_.size(); }
   uint64_t version() const { return world_.version(); }
   const std::string& name() const { return name_; }
+  // The world the ladar sees, and an edit of it in place (the cutter taking coal): `edit`
+  // returns whether it changed the world (LINE_MAP follows with --line-map each).
+  const minenav::World& world() const { return world_; }
+  bool Edit(const std::function<bool(minenav::World*)>& edit);
 
  private:
   SimScenario scenario_;
@@ -109,6 +117,8 @@ class SimulatedVehicle {
   // Integrates the motion since the previous tick (capped at 1 s, so a suspended process
   // does not jump) under `command`, whose utime is when it was received, at time `now`.
   Tick Step(int64_t now, const std::optional<DriveCommand>& command);
+  // The true pose now (after the last Step).
+  const Pose2& pose() const { return vehicle_.pose(); }
 
  private:
   SkidSteerVehicle vehicle_;

@@ -17,6 +17,10 @@
 // A command's age is measured from when it was received, not from its own utime, so a
 // sender with a skewed clock cannot keep the vehicle moving or stop it early.
 //
+// The cutter appendages (sim/cutterhead.h): CUTTER_COMMAND in, CUTTER_STATE out; every
+// DRIVE_COMMAND passes the appendage order constraints first, and when a shear reaches the
+// floor the cut is taken out of the world and SIM_WORLD published at once.
+//
 // The process (vehicle_sim_main.cc) declares the options, prepares the scenario and wires
 // the node; the simulation itself is sim/vehicle_sim.h.
 
@@ -40,6 +44,9 @@ struct VehicleSimNodeOptions {
   std::string odometry_channel = "ODOMETRY";
   std::string world_channel = "SIM_WORLD";
   std::string map_channel = "LINE_MAP";
+  std::string cutter_command_channel = "CUTTER_COMMAND";
+  std::string cutter_state_channel = "CUTTER_STATE";
+  double cutter_state_period = 0.2;  // s
 };
 
 // Every option: the simulation's (the vehicle as vehicle.*, the odometry as odometry.*, the
@@ -63,12 +70,15 @@ class VehicleSimNode {
   // Applies a world change due at `now` and publishes it at once; true if the world changed.
   bool ChangeWorld(int64_t now);
   void Tick(int64_t now);
+  void PublishCutterState(int64_t now);
 
   NodeRuntime& runtime_;
   VehicleSimNodeOptions options_;
   WorldTimeline world_;
   SimulatedVehicle vehicle_;
   std::optional<DriveCommand> command_;  // utime = when it was received
+  Cutterhead cutter_;
+  std::optional<int64_t> last_tick_;
 };
 
 }  // namespace minenav

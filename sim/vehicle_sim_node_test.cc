@@ -10,6 +10,8 @@
 #include "common/file_io.h"
 #include "common/node/conversions.h"
 #include "common/node/fake_runtime.h"
+#include "minenav/cutter_command_t.hpp"
+#include "minenav/cutter_state_t.hpp"
 #include "minenav/drive_command_t.hpp"
 #include "minenav/line_map_t.hpp"
 #include "minenav/odometry_t.hpp"
@@ -57,7 +59,7 @@ using Channels = std::vector<std::string>;
 
 TEST(VehicleSimNodeTest, TheWorldGoesOutFirstThenTruthAndOdometryEveryTick) {
   Harness h(TenHertz());
-  EXPECT_EQ(h.SpinChannels(), (Channels{"SIM_WORLD", "LINE_MAP", "SIM_TRUTH", "ODOMETRY"}));
+  EXPECT_EQ(h.SpinChannels(), (Channels{"SIM_WORLD", "LINE_MAP", "SIM_TRUTH", "ODOMETRY", "CUTTER_STATE"}));
   const auto world = h.bus->Decoded<line_map_t>("SIM_WORLD");
   ASSERT_EQ(world.size(), 1u);
   EXPECT_EQ(world[0].name, "a");
@@ -138,7 +140,8 @@ TEST(VehicleSimNodeTest, PrepareScenarioReadsTheWorldsAndWritesTheOutputs) {
 TEST(VehicleSimNodeTest, EveryOptionIsReachableAndTheFlatFlagsSetTheNestedKeys) {
   const auto keys = ExpectEveryOptionReachable<VehicleSimNodeOptions>(
       VehicleSimNodeOptions(), [](ConfigSchema& s, VehicleSimNodeOptions& o) { DeclareOptions(s, o); });
-  EXPECT_EQ(keys.size(), 29u + 5u);  // VehicleSimOptions (29) and the five channels
+  // VehicleSimOptions (29 + the cutterhead's 9), the seven channels, cutter_state_period.
+  EXPECT_EQ(keys.size(), 38u + 7u + 1u);
   VehicleSimNodeOptions o;
   ConfigSchema s("vehicle_sim", "test");
   DeclareOptions(s, o);
@@ -158,6 +161,69 @@ TEST(VehicleSimNodeTest, EveryOptionIsReachableAndTheFlatFlagsSetTheNestedKeys) 
       {"odometry-rotation-noise", "odometry.rotation_noise = 0.003"}};
   ASSERT_EQ(s.Parse(FlagArgs(flags)), ParseOutcome::kRun);
   ExpectConfigLines(s.ConfigText(), flags);
+}
+
+
+// The cutterhead on the bus: a SUMP without the drum is refused on CUTTER_STATE; with the drum
+// turning the miner sumps, and the shear reaching the floor publishes the cut world at once.
+TEST(VehicleSimNodeTest, CutterCommandsDriveTheAppendagesAndAShearCutsTheWorld) {
+  VehicleSimNodeOptions o = TenHertz();
+  o.sim.odometry = {};
+  ManualClock clock{kT0};
+  FakeRuntime fake{clock};
+  // The drum's front (5 m ahead of the pose) touches the wall at x = 5.
+  VehicleSimNode node(fake.runtime(), o, MakeSimScenario({{"a", Square(5)}}, {}, ScenarioOptions(), Pose2(0, 0, 0)));
+  FakeBus& bus = fake.bus();
+  auto command = [&](int8_t action) {
+    cutter_command_t c{};
+    c.utime = clock.NowUtime();
+    c.action = action;
+    bus.InjectMessage("CUTTER_COMMAND", c);
+  };
+  auto spin = [&](int ticks, double v) {
+    for (int k = 0; k < ticks; ++k) {
+      drive_command_t d{};
+      d.utime = clock.NowUtime();
+      d.mode = drive_command_t::VELOCITY;
+      d.v = v;
+      d.timeout = 0.5;
+      bus.InjectMessage("DRIVE_COMMAND", d);
+      clock.Advance(100'000);
+      fake.runtime().SpinOnce(0);
+    }
+  };
+  fake.runtime().SpinOnce(0);
+  command(cutter_command_t::SUMP);
+  spin(1, 0.0);
+  EXPECT_EQ(bus.Decoded<cutter_state_t>("CUTTER_STATE").back().message, "refused SUMP: the drum is not turning");
+  spin(20, 0.05);  // the drum touches the wall: it may not be driven into it
+  EXPECT_EQ(bus.Decoded<cutter_state_t>("CUTTER_STATE").back().message,
+            "refused DRIVE: no sump without the drum turning (the drum touches the face)");
+  EXPECT_NEAR(bus.Decoded<vehicle_truth_t>("SIM_TRUTH").back().pose.x, 0.0, 1e-9);
+  command(cutter_command_t::DRUM_ON);
+  spin(1, 0.0);
+  command(cutter_command_t::SUMP);
+  spin(1, 0.0);
+  EXPECT_EQ(bus.Decoded<cutter_state_t>("CUTTER_STATE").back().phase, cutter_state_t::SUMPING);
+  spin(60, 0.05);
+  spin(10, 0.0);
+  const double x = bus.Decoded<vehicle_truth_t>("SIM_TRUTH").back().pose.x;
+  EXPECT_GT(x, 0.2);
+  command(cutter_command_t::SHEAR);
+  const size_t worlds = bus.Decoded<line_map_t>("SIM_WORLD").size();
+  spin(115, 0.0);  // 11.5 s of the 12 s shear
+  EXPECT_EQ(bus.Decoded<line_map_t>("SIM_WORLD").size(), worlds + 11);  // the periodic ones only
+  spin(10, 0.0);
+  const cutter_state_t state = bus.Decoded<cutter_state_t>("CUTTER_STATE").back();
+  EXPECT_EQ(state.phase, cutter_state_t::CLEANING);
+  EXPECT_DOUBLE_EQ(state.boom_height, 0.0);
+  EXPECT_NEAR(state.sumped_depth, x, 1e-9);
+  EXPECT_NEAR(state.coal_removed, 3.3 * x, 0.03);
+  const std::vector<Segment> cut = SegmentsFromLcm(bus.Decoded<line_map_t>("SIM_WORLD").back());
+  const auto hit = CastRay(Eigen::Vector2d(0, 0), 0.0, cut, 100.0);
+  ASSERT_TRUE(hit);
+  EXPECT_NEAR(hit->range, 5.0 + x, 1e-9);
+  EXPECT_GT(bus.Decoded<line_map_t>("SIM_WORLD").back().version, bus.Decoded<line_map_t>("SIM_WORLD").front().version);
 }
 
 }  // namespace

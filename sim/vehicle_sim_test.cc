@@ -34,8 +34,8 @@ TEST(VehicleSimOptionsTest, EveryFieldIsDeclaredAndReachable) {
   // OdometryErrorOptions: two scale errors, two drifts, two noises.
   EXPECT_EQ(ExpectEveryOptionReachable<OdometryErrorOptions>().size(), 6u);
   // VehicleSimOptions: 14 of its own (world, change times, line_map, the generator's 6,
-  // the two outputs, start_pose, rate, map_period) and vehicle (9) and odometry (6) nested.
-  EXPECT_EQ(ExpectEveryOptionReachable<VehicleSimOptions>().size(), 14u + 9u + 6u);
+  // the two outputs, start_pose, rate, map_period) and vehicle (9) and odometry (6) and cutterhead (9) nested.
+  EXPECT_EQ(ExpectEveryOptionReachable<VehicleSimOptions>().size(), 14u + 9u + 6u + 9u);
 }
 
 TEST(VehicleSimOptionsTest, WorldFlagsAreTakenOutInOrder) {

@@ -1,0 +1,64 @@
+#pragma once
+// cutter as a node: the sump-shear cycle of tracker/cutter.h on the bus.
+//
+// The cut task arrives on CUT_TASK as a cutter_command_t: action SUMP starts a box cut
+// `sump_depth` m deep into the face line face_x1..y2 (map frame; both points equal, e.g. all
+// zero = find the face in CONTOUR_MAP straight ahead of the vehicle); action STOP cancels the
+// cut under way; the message's seq is the task id reported on TASK_STATUS. (CUTTER_COMMAND
+// itself is what the cutter sends the vehicle's appendages, so the task has its own channel.)
+//
+// Subscribes CUT_TASK, POSE (pose_estimate_t; unconverged estimates are ignored), ODOMETRY
+// (the prediction between estimates), CUTTER_STATE and CONTOUR_MAP; publishes DRIVE_COMMAND
+// (every tick while a cut is active and one STOP when it ends, nothing otherwise),
+// CUTTER_COMMAND, TASK_STATUS (on start, every second while active, and when it ends: DONE,
+// or FAILED with the one-line reason) and HEARTBEAT (the step, or the reason it stopped).
+// Never SIM_TRUTH.
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "common/config.h"
+#include "common/node/node_runtime.h"
+#include "tracker/cutter.h"
+
+namespace minenav {
+
+struct CutterNodeOptions {
+  std::string task_channel = "CUT_TASK";
+  std::string pose_channel = "POSE";
+  std::string odometry_channel = "ODOMETRY";
+  std::string state_channel = "CUTTER_STATE";
+  std::string map_channel = "CONTOUR_MAP";
+  std::string drive_channel = "DRIVE_COMMAND";
+  std::string command_channel = "CUTTER_COMMAND";
+  std::string status_channel = "TASK_STATUS";
+  double rate = 10.0;  // Hz
+  CutterOptions cutter;
+};
+
+void DeclareOptions(ConfigSchema& schema, CutterNodeOptions& o);
+
+class CutterNode {
+ public:
+  // Subscribes and adds the control timer (call after runtime.Start()).
+  CutterNode(NodeRuntime& runtime, const CutterNodeOptions& options);
+  int Run() { return runtime_.Run(); }
+  const Cutter& cutter() const { return cutter_; }
+
+ private:
+  void Tick(int64_t now);
+  void PublishStatus(int64_t now);
+
+  NodeRuntime& runtime_;
+  CutterNodeOptions options_;
+  Cutter cutter_;
+  std::optional<StampedPose> pose_;
+  std::optional<CutterState> state_;
+  std::vector<Segment> map_;
+  int64_t last_status_ = 0;
+  std::string last_step_;
+};
+
+}  // namespace minenav
