@@ -357,6 +357,20 @@ std::vector<Pose2> Se2Planner::CorridorWaypoints(const Pose2& start, const Pose2
   return waypoints;
 }
 
+namespace {
+
+// The work of another search added to a result's counters (states: the larger).
+void AddCounts(Se2PlanResult& into, const Se2PlanResult& other) {
+  into.expansions += other.expansions;
+  into.states = std::max(into.states, other.states);
+  into.shots_tried += other.shots_tried;
+  into.collisions.free_by_field += other.collisions.free_by_field;
+  into.collisions.blocked_by_field += other.collisions.blocked_by_field;
+  into.collisions.exact_tests += other.collisions.exact_tests;
+}
+
+}  // namespace
+
 Se2PlanResult Se2Planner::Plan(const Pose2& start, const Pose2& goal, const SearchLimits& limits) const {
   if (!setup_error_.empty() || !options_.corridor_waypoints) return Search(start, goal, limits);
   const std::vector<Pose2> waypoints = CorridorWaypoints(start, goal);
@@ -373,24 +387,17 @@ Se2PlanResult Se2Planner::Plan(const Pose2& start, const Pose2& goal, const Sear
     leg.max_expansions =
         std::min<int64_t>(options_.corridor_leg_expansions, limits.max_expansions - total.expansions);
     if (leg.max_expansions < 1) break;
-    const Se2PlanResult r = Search(from, to, leg);
-    total.expansions += r.expansions;
-    total.states = std::max(total.states, r.states);
-    total.shots_tried += r.shots_tried;
-    total.collisions.free_by_field += r.collisions.free_by_field;
-    total.collisions.blocked_by_field += r.collisions.blocked_by_field;
-    total.collisions.exact_tests += r.collisions.exact_tests;
+    Se2PlanResult r = Search(from, to, leg);
+    if (r.status == SearchStatus::kStopped) {
+      AddCounts(r, total);  // the earlier legs' work
+      return r;
+    }
+    AddCounts(total, r);
     if (r.status != SearchStatus::kFound) {
-      if (r.status == SearchStatus::kStopped) return r;
       SearchLimits rest = limits;
       rest.max_expansions = std::max<int64_t>(1, limits.max_expansions - total.expansions);
       Se2PlanResult whole = Search(start, goal, rest);
-      whole.expansions += total.expansions;
-      whole.states = std::max(whole.states, total.states);
-      whole.shots_tried += total.shots_tried;
-      whole.collisions.free_by_field += total.collisions.free_by_field;
-      whole.collisions.blocked_by_field += total.collisions.blocked_by_field;
-      whole.collisions.exact_tests += total.collisions.exact_tests;
+      AddCounts(whole, total);
       return whole;
     }
     total.cost += r.cost;
