@@ -390,6 +390,16 @@ TEST(Se2PlannerTest, CornerToCornerThroughCorridorWaypointsWithinABoundOfExpansi
   ASSERT_EQ(back.status, SearchStatus::kFound) << back.reason;
   const auto back_report = testing::CheckPath(map, s, AsChecked(back.path), CheckerFor(planner));
   EXPECT_TRUE(back_report.ok) << back_report.problem;
+  // A leg that fails (one expansion allowed: the first leg's shot does not reach the
+  // waypoint) hands over to the whole search, whose path is checked too.
+  Se2PlannerOptions tight = o;
+  tight.corridor_leg_expansions = 1;
+  const Se2Planner fallback(map, Footprint::Rectangle(3.3, 10.0), tight);
+  const Se2PlanResult f = fallback.Plan(s, g, SearchLimits{});
+  ASSERT_EQ(f.status, SearchStatus::kFound) << f.reason;
+  EXPECT_GT(f.expansions, 1);
+  const auto fallback_report = testing::CheckPath(map, s, AsChecked(f.path), CheckerFor(fallback));
+  EXPECT_TRUE(fallback_report.ok) << fallback_report.problem;
 }
 
 TEST(Se2PlannerTest, RandomRequestsInARoomGiveCheckedPaths) {
