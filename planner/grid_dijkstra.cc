@@ -1,5 +1,6 @@
 #include "planner/grid_dijkstra.h"
 
+#include <cmath>
 #include <limits>
 #include <numbers>
 #include <queue>
@@ -46,6 +47,67 @@ double LazyGridDistances::Distance(int x, int y) {
           open_.push({ng, n});
         }
       }
+  }
+  return done_[target] ? d_[target] : std::numeric_limits<double>::infinity();
+}
+
+LazyHeadingGridDistances::LazyHeadingGridDistances(const OccupancyGrid& grid, GridCell source, int source_heading,
+                                                   double turn_cost, double reverse_factor,
+                                                   const std::vector<uint8_t>* roomy, double narrow_turn_factor)
+    : grid_(grid),
+      source_(source),
+      source_heading_(((source_heading % 8) + 8) % 8),
+      turn_cost_(turn_cost),
+      reverse_factor_(reverse_factor),
+      roomy_(roomy),
+      narrow_turn_factor_(narrow_turn_factor),
+      d_(grid.blocked.size() * 8, std::numeric_limits<double>::infinity()),
+      done_(grid.blocked.size() * 8, 0) {
+  if (!grid.Free(source.x, source.y)) return;
+  const size_t s = grid.Index(source.x, source.y) * 8 + static_cast<size_t>(source_heading_);
+  d_[s] = 0.0;
+  open_.push({0.0, s});
+}
+
+int LazyHeadingGridDistances::HeadingOf(double theta) {
+  const int k = static_cast<int>(std::lround(theta / (std::numbers::pi / 4.0)));
+  return ((k % 8) + 8) % 8;
+}
+
+double LazyHeadingGridDistances::TurnCostAt(int x, int y) const {
+  return roomy_ == nullptr || (*roomy_)[grid_.Index(x, y)] ? turn_cost_ : turn_cost_ * narrow_turn_factor_;
+}
+
+double LazyHeadingGridDistances::Distance(int x, int y, int heading) {
+  if (x < 0 || y < 0 || x >= grid_.width || y >= grid_.height || !grid_.Free(x, y))
+    return std::numeric_limits<double>::infinity();
+  const size_t target = grid_.Index(x, y) * 8 + static_cast<size_t>(((heading % 8) + 8) % 8);
+  while (!done_[target] && !open_.empty()) {
+    const auto [g, s] = open_.top();
+    open_.pop();
+    if (done_[s] || g > d_[s]) continue;
+    done_[s] = 1;
+    ++settled_;
+    const size_t c = s / 8;
+    const int k = static_cast<int>(s % 8);
+    const auto relax = [&](size_t n, double ng) {
+      if (ng < d_[n]) {
+        d_[n] = ng;
+        open_.push({ng, n});
+      }
+    };
+    const int cx = static_cast<int>(c % static_cast<size_t>(grid_.width));
+    const int cy = static_cast<int>(c / static_cast<size_t>(grid_.width));
+    const double turn = TurnCostAt(cx, cy);
+    relax(c * 8 + static_cast<size_t>((k + 1) % 8), g + turn);
+    relax(c * 8 + static_cast<size_t>((k + 7) % 8), g + turn);
+    // Predecessors: the cell behind drove forward into c, the cell ahead reversed into it.
+    const double step = k % 2 == 1 ? std::numbers::sqrt2 : 1.0;
+    for (const int sign : {-1, 1}) {
+      const int dx = sign * kDx[k], dy = sign * kDy[k];
+      if (!GridMoveAllowed(grid_, cx, cy, dx, dy)) continue;
+      relax(grid_.Index(cx + dx, cy + dy) * 8 + static_cast<size_t>(k), g + step * (sign < 0 ? 1.0 : reverse_factor_));
+    }
   }
   return done_[target] ? d_[target] : std::numeric_limits<double>::infinity();
 }

@@ -38,4 +38,46 @@ class LazyGridDistances {
   int64_t settled_ = 0;
 };
 
+// Costs to go to a source state over (cell, heading) states, heading k = 0..7 the direction
+// k * 45 degrees: a state moves to the next cell ahead (1 or sqrt(2) cells, no corner
+// cutting) or, at `reverse_factor` times that, to the cell behind, and turns by 45 degrees in
+// place at `turn_cost` cells where `roomy` (a cell per grid cell, may be null = everywhere)
+// is set, at `narrow_turn_factor` times that elsewhere. Distance(x, y, k) is the cost from
+// (x, y, k) to the source state, settled on demand like LazyGridDistances. With turn_cost > 0
+// paths with fewer turns, turning where there is room, are cheaper: the SE(2) search's guide
+// (not a lower bound on the vehicle's cost, whose arcs turn at no extra cost).
+// `grid` and `roomy` must outlive this.
+class LazyHeadingGridDistances {
+ public:
+  LazyHeadingGridDistances(const OccupancyGrid& grid, GridCell source, int source_heading, double turn_cost,
+                           double reverse_factor, const std::vector<uint8_t>* roomy, double narrow_turn_factor);
+
+  // Cost from (x, y, heading) to the source state; infinity where blocked, outside or
+  // unreachable.
+  double Distance(int x, int y, int heading);
+  GridCell source() const { return source_; }
+  int source_heading() const { return source_heading_; }
+  double turn_cost() const { return turn_cost_; }
+  double reverse_factor() const { return reverse_factor_; }
+  double TurnCostAt(int x, int y) const;
+  int64_t settled() const { return settled_; }
+  // The heading (0..7) nearest to theta (radians).
+  static int HeadingOf(double theta);
+  static constexpr int kDx[8] = {1, 1, 0, -1, -1, -1, 0, 1};
+  static constexpr int kDy[8] = {0, 1, 1, 1, 0, -1, -1, -1};
+
+ private:
+  using Entry = std::pair<double, size_t>;
+  const OccupancyGrid& grid_;
+  GridCell source_;
+  int source_heading_;
+  double turn_cost_, reverse_factor_;
+  const std::vector<uint8_t>* roomy_;
+  double narrow_turn_factor_;
+  std::vector<double> d_;  // [cell * 8 + heading]
+  std::vector<uint8_t> done_;
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<>> open_;
+  int64_t settled_ = 0;
+};
+
 }  // namespace minenav

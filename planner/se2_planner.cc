@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <queue>
 #include <sstream>
 #include <unordered_map>
@@ -123,6 +124,9 @@ std::string ValidateOptions(const Se2PlannerOptions& o) {
   if (!(o.analytic_shot_max_cost_ratio >= 1.0)) return "analytic_shot_max_cost_ratio must be >= 1";
   if (o.collision_discs < 1 || o.collision_discs > 64) return "collision_discs must be in [1, 64]";
   if (o.cached_goals < 1 || o.cached_goals > 64) return "cached_goals must be in [1, 64]";
+  if (o.corridor_leg_expansions < 1) return "corridor_leg_expansions must be >= 1";
+  if (!(o.heuristic_turn_cost >= 0.0) || !std::isfinite(o.heuristic_turn_cost))
+    return "heuristic_turn_cost must be finite and >= 0";
   return "";
 }
 
@@ -145,6 +149,12 @@ void DeclareOptions(OptionScope scope, Se2PlannerOptions& o) {
                   0.0, 1e6);
   scope.AddDouble("analytic_shot_max_cost_ratio", &o.analytic_shot_max_cost_ratio, "",
                   "shots dearer than this times the cheapest are not tried", 1.0, 1e6);
+  scope.AddDouble("heuristic_turn_cost", &o.heuristic_turn_cost, "m",
+                  "the 2-D heuristic's cost per 45 degrees of turning (0 = off; > 0 not admissible)", 0.0, 1000.0);
+  scope.AddBool("corridor_waypoints", &o.corridor_waypoints,
+                "with heuristic_turn_cost: plan leg by leg through the middle of the 2-D path's straight runs");
+  scope.AddInt("corridor_leg_expansions", &o.corridor_leg_expansions, "expansions a corridor leg may take", 1,
+               100000000);
   DeclareOptions(scope.Nested("costs"), o.costs);
 }
 
@@ -186,6 +196,11 @@ Se2Planner::Se2Planner(std::vector<Segment> map, Footprint footprint, Se2Planner
       largest_clearance_ = std::max(largest_clearance_, c);
       centre_cells_.SetBlocked(ix, iy, c + slack < checker_->inscribed_radius() + margin);
     }
+  roomy_cells_.assign(centre_cells_.blocked.size(), 0);
+  const double roomy = 0.5 * (checker_->inscribed_radius() + checker_->circumscribed_radius()) + margin;
+  for (int iy = 0; iy < frame.ny; ++iy)
+    for (int ix = 0; ix < frame.nx; ++ix)
+      roomy_cells_[centre_cells_.Index(ix, iy)] = field_->AtCell(ix, iy) + slack >= roomy ? 1 : 0;
 }
 
 bool Se2Planner::PoseFree(const Pose2& pose) const { return checker_ && !checker_->Collides(pose); }
@@ -243,6 +258,24 @@ LazyGridDistances& Se2Planner::DistancesTo(GridCell goal) const {
   return *goal_distances_.front();
 }
 
+LazyHeadingGridDistances& Se2Planner::HeadingDistancesTo(GridCell goal, int heading) const {
+  for (auto it = goal_heading_distances_.begin(); it != goal_heading_distances_.end(); ++it)
+    if ((*it)->source() == goal && (*it)->source_heading() == heading) {
+      if (it != goal_heading_distances_.begin()) {
+        auto hit = std::move(*it);
+        goal_heading_distances_.erase(it);
+        goal_heading_distances_.push_front(std::move(hit));
+      }
+      return *goal_heading_distances_.front();
+    }
+  goal_heading_distances_.push_front(std::make_unique<LazyHeadingGridDistances>(
+      centre_cells_, goal, heading, options_.heuristic_turn_cost / field_->frame().cell,
+      std::max(1.0, options_.costs.reverse_factor), &roomy_cells_, 4.0));
+  while (goal_heading_distances_.size() > static_cast<size_t>(options_.cached_goals))
+    goal_heading_distances_.pop_back();
+  return *goal_heading_distances_.front();
+}
+
 std::string Se2Planner::CheckPose(const Pose2& pose, const std::string& what) const {
   if (!Finite(pose)) return what + " " + PoseText(pose) + " is not finite";
   if (pose.x < map_min_.x() || pose.y < map_min_.y() || pose.x > map_max_.x() || pose.y > map_max_.y()) {
@@ -257,7 +290,126 @@ std::string Se2Planner::CheckPose(const Pose2& pose, const std::string& what) co
   return "";
 }
 
-Se2PlanResult Se2Planner::Plan(const Pose2& start_in, const Pose2& goal_in, const SearchLimits& limits) const {
+std::vector<Pose2> Se2Planner::CorridorWaypoints(const Pose2& start, const Pose2& goal) const {
+  std::vector<Pose2> waypoints;
+  if (!(options_.heuristic_turn_cost > 0.0) || !Finite(start) || !Finite(goal)) return waypoints;
+  const GridFrame& frame = field_->frame();
+  LazyHeadingGridDistances& d = HeadingDistancesTo({frame.CellX(goal.x), frame.CellY(goal.y)},
+                                                   LazyHeadingGridDistances::HeadingOf(goal.theta));
+  using H = LazyHeadingGridDistances;
+  // Descend the (cell, heading) costs from the start state to the goal's: the runs of moves
+  // with one heading, each with its cells.
+  struct Run {
+    int heading;
+    std::vector<GridCell> cells;
+  };
+  std::vector<Run> runs;
+  int x = frame.CellX(start.x), y = frame.CellY(start.y), k = H::HeadingOf(start.theta);
+  double here = d.Distance(x, y, k);
+  if (here == kInf) return waypoints;
+  for (int guard = 0; here > 1e-9 && guard < 8 * frame.nx * frame.ny; ++guard) {
+    bool moved = false;
+    const double step = k % 2 == 1 ? std::numbers::sqrt2 : 1.0;
+    for (const int sign : {1, -1}) {
+      const int dx = sign * H::kDx[k], dy = sign * H::kDy[k];
+      if (!GridMoveAllowed(centre_cells_, x, y, dx, dy)) continue;
+      const double there = d.Distance(x + dx, y + dy, k);
+      if (std::abs(there + step * (sign > 0 ? 1.0 : d.reverse_factor()) - here) < 1e-6) {
+        if (runs.empty() || runs.back().heading != k) runs.push_back({k, {}});
+        x += dx, y += dy, here = there, moved = true;
+        runs.back().cells.push_back({x, y});
+        break;
+      }
+    }
+    if (moved) continue;
+    for (const int b : {(k + 1) % 8, (k + 7) % 8}) {
+      const double there = d.Distance(x, y, b);
+      if (std::abs(there + d.TurnCostAt(x, y) - here) < 1e-6) {
+        k = b, here = there, moved = true;
+        break;
+      }
+    }
+    if (!moved) return {};  // not a descent (rounding): plan without waypoints
+  }
+  // A waypoint in the middle of every straight run along x or y between the first and the
+  // last, centred across the corridor, with the run's heading.
+  const double min_run = 2.0 * options_.turn_radius;
+  for (size_t i = 1; i + 1 < runs.size(); ++i) {
+    const Run& run = runs[i];
+    if (run.heading % 2 == 1 || static_cast<double>(run.cells.size()) * frame.cell < min_run) continue;
+    const GridCell c = run.cells[run.cells.size() / 2];
+    // Across the run: the cell of most clearance within 5 m.
+    const int px = run.heading % 4 == 0 ? 0 : 1, py = 1 - px;
+    const int reach = static_cast<int>(5.0 / frame.cell);
+    GridCell best = c;
+    double best_clearance = field_->AtCell(c.x, c.y);
+    for (const int sign : {1, -1})
+      for (int j = 1; j <= reach; ++j) {
+        const int cx = c.x + sign * j * px, cy = c.y + sign * j * py;
+        if (!centre_cells_.Free(cx, cy)) break;
+        if (field_->AtCell(cx, cy) > best_clearance) best_clearance = field_->AtCell(cx, cy), best = {cx, cy};
+      }
+    const Eigen::Vector2d centre = frame.CellMin(best.x, best.y) + Eigen::Vector2d::Constant(0.5 * frame.cell);
+    const Pose2 w(centre.x(), centre.y(), NormalizeAngle(run.heading * kPi / 4.0));
+    if (checker_->Collides(w)) continue;
+    waypoints.push_back(w);
+  }
+  return waypoints;
+}
+
+namespace {
+
+// The work of another search added to a result's counters (states: the larger).
+void AddCounts(Se2PlanResult& into, const Se2PlanResult& other) {
+  into.expansions += other.expansions;
+  into.states = std::max(into.states, other.states);
+  into.shots_tried += other.shots_tried;
+  into.collisions.free_by_field += other.collisions.free_by_field;
+  into.collisions.blocked_by_field += other.collisions.blocked_by_field;
+  into.collisions.exact_tests += other.collisions.exact_tests;
+}
+
+}  // namespace
+
+Se2PlanResult Se2Planner::Plan(const Pose2& start, const Pose2& goal, const SearchLimits& limits) const {
+  if (!setup_error_.empty() || !options_.corridor_waypoints) return Search(start, goal, limits);
+  const std::vector<Pose2> waypoints = CorridorWaypoints(start, goal);
+  if (waypoints.empty()) return Search(start, goal, limits);
+  // Leg by leg; the first leg that fails gives way to the whole search.
+  Se2PlanResult total;
+  total.status = SearchStatus::kFound;
+  total.path.start = start;
+  std::vector<MotionPiece> pieces;
+  Pose2 from = start;
+  for (size_t i = 0; i <= waypoints.size(); ++i) {
+    const Pose2 to = i < waypoints.size() ? waypoints[i] : goal;
+    SearchLimits leg = limits;
+    leg.max_expansions =
+        std::min<int64_t>(options_.corridor_leg_expansions, limits.max_expansions - total.expansions);
+    if (leg.max_expansions < 1) break;
+    Se2PlanResult r = Search(from, to, leg);
+    if (r.status == SearchStatus::kStopped) {
+      AddCounts(r, total);  // the earlier legs' work
+      return r;
+    }
+    AddCounts(total, r);
+    if (r.status != SearchStatus::kFound) {
+      SearchLimits rest = limits;
+      rest.max_expansions = std::max<int64_t>(1, limits.max_expansions - total.expansions);
+      Se2PlanResult whole = Search(start, goal, rest);
+      AddCounts(whole, total);
+      return whole;
+    }
+    total.cost += r.cost;
+    pieces.insert(pieces.end(), r.path.pieces.begin(), r.path.pieces.end());
+    from = to;
+  }
+  if (from.x != goal.x || from.y != goal.y) return Search(start, goal, limits);
+  total.path.pieces = MergePieces(pieces);
+  return total;
+}
+
+Se2PlanResult Se2Planner::Search(const Pose2& start_in, const Pose2& goal_in, const SearchLimits& limits) const {
   Se2PlanResult result;
   const auto invalid = [&](const std::string& reason) {
     result.status = SearchStatus::kInvalidRequest;
@@ -293,19 +445,26 @@ Se2PlanResult Se2Planner::Plan(const Pose2& start_in, const Pose2& goal_in, cons
   // 2-D part of the heuristic: distances from the goal over the cells the centre may be in,
   // settled on demand and kept for the next request to the same goal cell.
   const GridFrame& frame = field_->frame();
-  LazyGridDistances& to_goal = DistancesTo({frame.CellX(goal.x), frame.CellY(goal.y)});
-  const auto distance_2d = [&](double x, double y) {
-    const double d = to_goal.Distance(frame.CellX(x), frame.CellY(y));
+  // With heuristic_turn_cost the distances are over (cell, axis) and charge the axis's turns;
+  // a cell is reachable in one exactly when it is in the other (turns are free of the map).
+  const GridCell goal_cell{frame.CellX(goal.x), frame.CellY(goal.y)};
+  const bool axis_term = options_.heuristic_turn_cost > 0.0;
+  LazyGridDistances* to_goal = axis_term ? nullptr : &DistancesTo(goal_cell);
+  LazyHeadingGridDistances* to_goal_axis =
+      axis_term ? &HeadingDistancesTo(goal_cell, LazyHeadingGridDistances::HeadingOf(goal.theta)) : nullptr;
+  const auto distance_2d = [&](double x, double y, double theta) {
+    const double d = axis_term ? to_goal_axis->Distance(frame.CellX(x), frame.CellY(y), LazyHeadingGridDistances::HeadingOf(theta))
+                               : to_goal->Distance(frame.CellX(x), frame.CellY(y));
     return d == kInf ? kInf : std::max(0.0, d * frame.cell / (options_.shot_heuristic ? 1.0 : kOctileStretch) - 2.0 * slack);
   };
-  if (distance_2d(start.x, start.y) == kInf)
+  if (distance_2d(start.x, start.y, start.theta) == kInf)
     return finish(SearchStatus::kNoPath,
                   "the goal is not reachable: no corridor wide enough for the footprint's inscribed circle joins "
                   "start and goal");
   const MotionCosts& costs = options_.costs;
   const double r = options_.turn_radius;
   const auto heuristic = [&](const Pose2& p, int direction) {
-    const double d2 = distance_2d(p.x, p.y);
+    const double d2 = distance_2d(p.x, p.y, p.theta);
     if (d2 == kInf) return kInf;
     double free_space = FreeSpaceLowerBound(p, goal, r, costs);
     if (options_.shot_heuristic) {

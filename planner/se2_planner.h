@@ -60,6 +60,21 @@ struct Se2PlannerOptions {
   // Shots dearer than this times the cheapest shot are not tried (loops and detours: they
   // would cost collision checks and rarely win). Default 1.2.
   double analytic_shot_max_cost_ratio = 1.2;
+  // m per 45 degrees: > 0 replaces the 2-D distance by LazyHeadingGridDistances over (cell,
+  // heading in 45-degree steps; reversing at costs.reverse_factor) whose turns cost this
+  // much where the centre has room (clearance >= the mean of the polygon's inscribed and
+  // circumscribed radii + margin: the crossings), 4 times that elsewhere: the search follows
+  // corridors with few turns instead of flooding every crossing of a staircase of equal 2-D
+  // length. Not a lower bound (the vehicle's arcs turn at no extra cost): the search is then
+  // not admissible. 0 = off. Default 0.
+  double heuristic_turn_cost = 0.0;
+  // With heuristic_turn_cost > 0: a request whose (cell, axis) path turns plans leg by leg
+  // through waypoints in the middle of the path's straight runs (centred across the corridor,
+  // heading along the run), each leg searched with at most corridor_leg_expansions; a leg
+  // that fails falls back to the whole search. Not optimal (the waypoints are fixed). Default
+  // true.
+  bool corridor_waypoints = true;
+  int corridor_leg_expansions = 100000;  // expansions a leg may take. Default 100,000.
   MotionCosts costs;
 };
 
@@ -89,6 +104,10 @@ class Se2Planner {
   // Not to be called from two threads at once on one planner (it keeps the heuristics of
   // recent goals, the swept primitives and the collision counters).
   Se2PlanResult Plan(const Pose2& start, const Pose2& goal, const SearchLimits& limits = {}) const;
+  // The waypoints a Plan would go through (tests, bench).
+  std::vector<Pose2> Waypoints(const Pose2& start, const Pose2& goal) const {
+    return setup_error_.empty() ? CorridorWaypoints(start, goal) : std::vector<Pose2>{};
+  }
 
   // Is the pose clear of the walls with the requested clearance (plus the sampling half-step)?
   bool PoseFree(const Pose2& pose) const;
@@ -116,11 +135,18 @@ class Se2Planner {
 
  private:
   std::string CheckPose(const Pose2& pose, const std::string& what) const;
+  // The whole search from start to goal (Plan without the corridor waypoints).
+  Se2PlanResult Search(const Pose2& start, const Pose2& goal, const SearchLimits& limits) const;
+  // The corridor waypoints between start and goal (empty when the axis path has no turn, or
+  // no waypoint is free).
+  std::vector<Pose2> CorridorWaypoints(const Pose2& start, const Pose2& goal) const;
   // The swept primitives for headings phase + k * bin, k = 0 .. heading_bins - 1 (cached for
   // the last phase asked).
   const std::vector<SweptPrimitive>& PrimitivesFor(double phase) const;
   // The 2-D distances to the goal cell (cached for the last cached_goals goals).
   LazyGridDistances& DistancesTo(GridCell goal) const;
+  // The (cell, heading) costs to the goal's state, when heuristic_turn_cost > 0.
+  LazyHeadingGridDistances& HeadingDistancesTo(GridCell goal, int heading) const;
 
   std::vector<Segment> map_;
   Footprint footprint_;
@@ -131,10 +157,12 @@ class Se2Planner {
   std::unique_ptr<ClearanceField> field_;
   std::unique_ptr<FootprintCollisionChecker> checker_;
   OccupancyGrid centre_cells_;  // the field's cells where the vehicle's centre may be
+  std::vector<uint8_t> roomy_cells_;  // centre cells with room to turn (heuristic_turn_cost)
   double largest_clearance_ = 0.0;
   mutable double primitives_phase_ = std::numeric_limits<double>::quiet_NaN();
   mutable std::vector<SweptPrimitive> primitives_;  // [heading * 8 + primitive]
   mutable std::deque<std::unique_ptr<LazyGridDistances>> goal_distances_;  // most recent first
+  mutable std::deque<std::unique_ptr<LazyHeadingGridDistances>> goal_heading_distances_;  // most recent first
 };
 
 }  // namespace minenav

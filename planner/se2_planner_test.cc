@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <random>
 
 #include "common/file_io.h"
@@ -283,6 +284,122 @@ TEST(GridDijkstraTest, LazyDistancesEqualTheFullDijkstra) {
     for (const size_t c : order)
       ASSERT_EQ(lazy.Distance(static_cast<int>(c % 40), static_cast<int>(c / 40)), full[c]);
   }
+}
+
+TEST(GridDijkstraTest, HeadingCostsEqualBellmanFord) {
+  const double kInf = std::numeric_limits<double>::infinity();
+  // Brute force over the (cell, heading) graph's forward edges: a move ahead (1 or sqrt 2), a
+  // move back at the reverse factor, a 45-degree turn at the cell's turn cost; Bellman-Ford
+  // to the source state.
+  std::mt19937 rng(9);
+  for (int trial = 0; trial < 6; ++trial) {
+    const int w = 12, h = 9;
+    OccupancyGrid grid(w, h);
+    std::vector<uint8_t> roomy(static_cast<size_t>(w * h));
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) {
+        grid.SetBlocked(x, y, rng() % 5 == 0);
+        roomy[grid.Index(x, y)] = rng() % 3 == 0;
+      }
+    const GridCell source{static_cast<int>(rng() % w), static_cast<int>(rng() % h)};
+    grid.SetBlocked(source.x, source.y, false);
+    const int source_heading = static_cast<int>(rng() % 8);
+    const double turn = trial == 0 ? 0.0 : 2.5, reverse = trial == 0 ? 1.0 : 1.5, narrow = 4.0;
+    LazyHeadingGridDistances lazy(grid, source, source_heading, turn, reverse, &roomy, narrow);
+    std::vector<double> d(static_cast<size_t>(w * h * 8), kInf);
+    d[grid.Index(source.x, source.y) * 8 + static_cast<size_t>(source_heading)] = 0.0;
+    for (bool changed = true; changed;) {
+      changed = false;
+      for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+          if (!grid.Free(x, y)) continue;
+          for (int k = 0; k < 8; ++k) {
+            double& here = d[grid.Index(x, y) * 8 + static_cast<size_t>(k)];
+            const double t = roomy[grid.Index(x, y)] ? turn : turn * narrow;
+            double best = here;
+            best = std::min(best, t + d[grid.Index(x, y) * 8 + static_cast<size_t>((k + 1) % 8)]);
+            best = std::min(best, t + d[grid.Index(x, y) * 8 + static_cast<size_t>((k + 7) % 8)]);
+            const double step = k % 2 == 1 ? std::sqrt(2.0) : 1.0;
+            for (const int sign : {1, -1}) {
+              const int dx = sign * LazyHeadingGridDistances::kDx[k], dy = sign * LazyHeadingGridDistances::kDy[k];
+              if (!GridMoveAllowed(grid, x, y, dx, dy)) continue;
+              best = std::min(best, step * (sign > 0 ? 1.0 : reverse) +
+                                        d[grid.Index(x + dx, y + dy) * 8 + static_cast<size_t>(k)]);
+            }
+            if (best < here - 1e-12) here = best, changed = true;
+          }
+        }
+    }
+    const std::vector<double> plain = GridDistancesFrom(grid, source);
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x)
+        for (int k = 0; k < 8; ++k) {
+          const double want = d[grid.Index(x, y) * 8 + static_cast<size_t>(k)];
+          const double got = lazy.Distance(x, y, k);
+          if (want == kInf) {
+            ASSERT_EQ(got, kInf);
+          } else {
+            ASSERT_NEAR(got, want, 1e-9) << x << " " << y << " " << k;
+            // Free turns and free reversing: the plain 2-D distance.
+            if (trial == 0) {
+              ASSERT_NEAR(got, plain[grid.Index(x, y)], 1e-9);
+            }
+          }
+        }
+  }
+}
+
+// A section of 2 x 2 pillars (12 m) with 6.5 m entries and crosscuts, its outer walls the
+// boundary.
+std::vector<Segment> SmallSection() {
+  std::vector<Segment> m;
+  const double room = 6.5, pillar = 12.0, side = 3 * room + 2 * pillar;
+  planner_test::AddBox(m, 0, 0, side, side);
+  for (int i = 0; i < 2; ++i)
+    for (int j = 0; j < 2; ++j) {
+      const double x = room + i * (room + pillar), y = room + j * (room + pillar);
+      planner_test::AddBox(m, x, y, x + pillar, y + pillar);
+    }
+  return m;
+}
+
+TEST(Se2PlannerTest, CornerToCornerThroughCorridorWaypointsWithinABoundOfExpansions) {
+  // Corner to corner of a small section (two turns) with the heading-aware 2-D term and the
+  // corridor waypoints: one waypoint in the middle of the crosscut, each leg a turn found by
+  // the shot; the whole path accepted by the independent checker.
+  const std::vector<Segment> map = SmallSection();
+  Se2PlannerOptions o;
+  o.clearance = 0.05;
+  o.heuristic_turn_cost = 6.0;
+  const Se2Planner planner(map, Footprint::Rectangle(3.3, 10.0), o);
+  const Pose2 s(9.0, 3.25, 0.0), g(34.5, 40.25, 0.0);
+  const std::vector<Pose2> waypoints = planner.Waypoints(s, g);
+  ASSERT_EQ(waypoints.size(), 1u);
+  EXPECT_NEAR(std::abs(NormalizeAngle(waypoints[0].theta - kPi / 2)), 0.0, 1e-9);
+  EXPECT_TRUE(planner.PoseFree(waypoints[0]));
+  SearchLimits limits;
+  limits.max_expansions = 5000;
+  const Se2PlanResult r = planner.Plan(s, g, limits);
+  ASSERT_EQ(r.status, SearchStatus::kFound) << r.reason;
+  const auto report = testing::CheckPath(map, s, AsChecked(r.path), CheckerFor(planner));
+  EXPECT_TRUE(report.ok) << report.problem;
+  EXPECT_GT(r.path.Length(), 25.5 + 37.0 - 10.0);
+  EXPECT_LT(r.path.Length(), 80.0);
+  // Facing back at the goal: the legs reverse or turn where there is room; still checked.
+  const Se2PlanResult back = planner.Plan(s, Pose2(34.5, 40.25, kPi), SearchLimits{});
+  ASSERT_EQ(back.status, SearchStatus::kFound) << back.reason;
+  const auto back_report = testing::CheckPath(map, s, AsChecked(back.path), CheckerFor(planner));
+  EXPECT_TRUE(back_report.ok) << back_report.problem;
+  // A leg that fails (one expansion allowed: the first leg's shot does not reach the
+  // waypoint) hands over to the whole search, whose path is checked too.
+  Se2PlannerOptions tight = o;
+  tight.corridor_leg_expansions = 1;
+  const Se2Planner fallback(map, Footprint::Rectangle(3.3, 10.0), tight);
+  const Se2PlanResult f = fallback.Plan(s, g, SearchLimits{});
+  ASSERT_EQ(f.status, SearchStatus::kFound) << f.reason;
+  EXPECT_GT(f.expansions, 1);
+  const auto fallback_report = testing::CheckPath(map, s, AsChecked(f.path), CheckerFor(fallback));
+  EXPECT_TRUE(fallback_report.ok) << fallback_report.problem;
 }
 
 TEST(Se2PlannerTest, RandomRequestsInARoomGiveCheckedPaths) {
