@@ -5,9 +5,10 @@
 #
 # Generates a room-and-pillar mine (thesis 5.2.1), starts vehicle_sim, ladar_driver
 # (Typhoon, 2048 points, 10 Hz), the live contour_mapper (thesis ch. 4: it maps while the
-# vehicle drives, inserting a scan every metre and tracking the others), lcm-logger and
-# waypoint_driver inside a private network namespace (nothing leaves this machine), drives
-# the survey route station by station, and leaves in DIR (default out/demo-<UTC time>): the
+# vehicle drives, inserting a scan every metre and tracking the others), the live
+# path_planner, the path_tracker (on the mapper's POSE, never SIM_TRUTH) and lcm-logger inside
+# a private network namespace (nothing leaves this machine); survey_client drives the survey
+# route station by station (a PATH_REQUEST each, tracked until the tracker reports it done), and leaves in DIR (default out/demo-<UTC time>): the
 # log, the world, the stations, the live contour map (contour_map.json, with a checkpoint of
 # the mapper saved every 10 scans, so a crash loses the last few scans, not the map), a
 # summary of the log, an SVG of the run and an SVG of the contour map rebuilt from the log
@@ -34,7 +35,8 @@ done
 minenav_install_deps
 build="$MINENAV_ROOT/build/release"
 echo "== building in $build"
-minenav_build "$build" -DMINENAV_WERROR=ON -- vehicle_sim ladar_driver waypoint_driver log_tool contour_mapper
+minenav_build "$build" -DMINENAV_WERROR=ON -- vehicle_sim ladar_driver log_tool contour_mapper path_planner \
+  path_tracker survey_client
 bin="$build/bin"
 
 out="${out:-$MINENAV_ROOT/out/demo-$(date -u +%Y%m%d-%H%M%S)}"
@@ -58,7 +60,12 @@ mapper_policy="--insert-min-translation 1.0 --insert-min-rotation 0.3 --final-re
 # survey inserts one scan per metre or 0.3 rad, so a few MB and a few hundredths of a second
 # per write: about 1 % of the mapper's time.
 checkpoint_every=10
-export out bin speed seed start_pose mapper_policy checkpoint_every
+# The survey vehicle's footprint (W,L in m, centred on its pose): the planner plans for it and
+# the tracker checks its motion with it. The stations of the generated survey point anywhere
+# in the 6 m entries, so a compact ladar vehicle surveys; the 3.3 x 10 m miner is
+# path_planner's default and the maneuvers' (planner/README.md).
+footprint_w=1.2 footprint_l=2.0
+export out bin speed seed start_pose mapper_policy checkpoint_every footprint_w footprint_l
 "$MINENAV_ROOT/tests/bus/private_net.sh" --port 7667 -- bash -c '
   set -euo pipefail
   pids=()
@@ -73,10 +80,15 @@ export out bin speed seed start_pose mapper_policy checkpoint_every
     2> "$out/ladar_driver.log" & pids+=($!)
   "$bin/contour_mapper" $mapper_policy --checkpoint "$out/mapper.ckpt" --checkpoint-every "$checkpoint_every" \
     --save-map "$out/contour_map.json" 2> "$out/contour_mapper.log" & pids+=($!)
+  "$bin/path_planner" --footprint "$footprint_w,$footprint_l" --speed "$speed" --deadline 5 \
+    2> "$out/path_planner.log" & pids+=($!)
+  "$bin/path_tracker" --vehicle-width "$footprint_w" --vehicle-length "$footprint_l" \
+    --tracker.cruise-speed "$speed" --tracker.turn-rate 0.5 --tracker.deceleration 2 \
+    2> "$out/path_tracker.log" & pids+=($!)
   sleep 1
-  echo "== driving the survey (progress below; Ctrl-C stops)"
-  "$bin/waypoint_driver" --stations "$out/stations.csv" --cruise-speed "$speed" \
-    --turn-rate 0.5 --dwell 0.5 --log-level info
+  echo "== driving the survey on the fleet'"'"'s own estimate: PATH_REQUEST per station, path_planner on the"
+  echo "   live contour map, path_tracker on the mapper'"'"'s POSE (progress below; Ctrl-C stops)"
+  "$bin/survey_client" --stations "$out/stations.csv" --requests.dwell 0.5 --log-level info
   sleep 0.5
 '
 
