@@ -21,7 +21,7 @@ minenav_test(NAME cutter_node_test SOURCES cutter_node_test.cc LIBS minenav_cutt
 # The sump-shear cycle closed in simulation: the cutter library, the simulated miner and
 # cutterhead (sim/), the ladar ray cast and the contour mapper's live changing-world map.
 if(TARGET minenav_mapper)
-  minenav_test(NAME cutter_sim_test NO_LCM SOURCES cutter_sim_test.cc TIMEOUT 900
+  minenav_test(NAME cutter_sim_test NO_LCM SOURCES cutter_sim_test.cc TIMEOUT 1800
     LIBS minenav_cutter minenav_sim minenav_mapper)
 endif()
 
