@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <map>
+#include <ostream>
 
 #include "common/angle.h"
 
@@ -70,6 +71,7 @@ struct PlannerVariant {
   double turn_in_place_per_rad;  // m of cost per rad
   bool shot_heuristic;
 };
+void PrintTo(const PlannerVariant& v, std::ostream* os) { *os << v.name; }
 
 class ClosedLoopPathShapeTest : public ::testing::TestWithParam<std::tuple<PlannerVariant, double>> {};
 
