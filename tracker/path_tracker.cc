@@ -161,6 +161,7 @@ TrackState PathTracker::SetPath(const PlannedPath& path) {
   run_ = 0;
   hint_ = 0;
   correcting_ = aligning_goal_ = false;
+  cusp_aligned_ = aligning_cusp_ = false;
   corrections_ = 0;
   done_length_ = 0.0;
   total_length_ = 0.0;
@@ -218,9 +219,7 @@ std::optional<TrackStep> PathTracker::CheckAhead(const Pose2& pose, const TrackS
   MotionPiece piece;
   std::string what;
   if (step.command.mode == DriveCommand::Mode::kTurnInPlace) {
-    piece.motion = Motion::kTurnInPlace;
-    const double reach = std::max(options_.collision_min_distance, std::abs(step.command.omega) * options_.collision_time);
-    piece.amount = std::copysign(std::min(reach, std::abs(left) + kTurnOvershoot), step.command.omega);
+    piece = TurnPiece(pose, step.command.omega, left);
     what = "turning in place " + Fixed(RadToDeg(piece.amount), 1) + " deg";
   } else {
     const int d = step.command.v >= 0 ? 1 : -1;
@@ -230,7 +229,8 @@ std::optional<TrackStep> PathTracker::CheckAhead(const Pose2& pose, const TrackS
     piece.radius = IsArc(piece.motion) ? options_.turn_radius : 0.0;
     what = std::string(ToString(piece.motion)) + " " + Fixed(piece.amount) + " m";
   }
-  piece.end = PoseAfter(pose, piece.motion, piece.amount, piece.radius);
+  if (step.command.mode != DriveCommand::Mode::kTurnInPlace)
+    piece.end = PoseAfter(pose, piece.motion, piece.amount, piece.radius);
   if (!map_->PieceCollides(pose, piece)) return std::nullopt;
   if (step.command.mode == DriveCommand::Mode::kVelocity) {
     // The commanded motion would touch a wall: the other motions of the same direction
@@ -270,6 +270,15 @@ std::optional<TrackStep> PathTracker::CheckAhead(const Pose2& pose, const TrackS
   }
   return Finish(TrackState::kBlocked, "blocked: " + what + " from " + Fixed(pose.x) + ", " + Fixed(pose.y) +
                                           " would touch the map; stopped short");
+}
+
+MotionPiece PathTracker::TurnPiece(const Pose2& pose, double omega, double left) const {
+  MotionPiece piece;
+  piece.motion = Motion::kTurnInPlace;
+  const double reach = std::max(options_.collision_min_distance, std::abs(omega) * options_.collision_time);
+  piece.amount = std::copysign(std::min(reach, std::abs(left) + kTurnOvershoot), omega);
+  piece.end = PoseAfter(pose, piece.motion, piece.amount, piece.radius);
+  return piece;
 }
 
 TrackStep PathTracker::Turn(double heading_error, const std::string& what) {
@@ -333,6 +342,24 @@ TrackStep PathTracker::Step(const Pose2& pose) {
       if (auto blocked = CheckAhead(pose, t, heading_error)) return *blocked;
       return t;
     }
+    if (run_ > 0 && runs_[static_cast<size_t>(run_ - 1)].direction != 0 && !cusp_aligned_) {
+      // At a cusp between two driving runs: turn in place to the next run's start heading
+      // first. Pure pursuit ends a run with its heading only converging on the end's (the
+      // goal point runs on past the end), and a run that starts with an arc as tight as the
+      // miner's can never take a heading lag out again while driving it (the pursuit arc is
+      // then tighter than the miner can drive). Skipped when the turn would touch the map.
+      const double heading_error = NormalizeAngle(run.samples.front().theta - pose.theta);
+      if (std::abs(heading_error) > options_.heading_tolerance) {
+        TrackStep t = Turn(heading_error, "aligning to the next run's heading at the cusp");
+        if (!map_ || !map_->PieceCollides(pose, TurnPiece(pose, t.command.omega, heading_error))) {
+          if (!aligning_cusp_) ++corrections_;
+          aligning_cusp_ = true;
+          return t;
+        }
+      }
+      cusp_aligned_ = true;
+      aligning_cusp_ = false;
+    }
     const int before = run_;
     TrackStep step = Drive(pose);
     if (run_ != before) {
@@ -356,6 +383,7 @@ TrackStep PathTracker::Drive(const Pose2& pose) {
     ++run_;
     hint_ = 0;
     correcting_ = false;
+    cusp_aligned_ = aligning_cusp_ = false;
     return Stop("run done");
   }
   const double lookahead = std::max(options_.lookahead, options_.lookahead_time * options_.cruise_speed);

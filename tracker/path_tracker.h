@@ -22,7 +22,9 @@
 //      wall is replaced by another of the same direction (straight, arc left, arc right, the
 //      nearest the pursuit curvature first) when that is free, else the vehicle stops and
 //      the path is abandoned as blocked, with the reason.
-// A turn-in-place run turns to its end heading. After the last run, the heading is aligned
+// At a cusp between two driving runs it first turns in place to the next run's start heading
+// (within heading_tolerance; skipped when that turn would touch the map). A turn-in-place run
+// turns to its end heading. After the last run, the heading is aligned
 // to the goal's within heading_tolerance (turning in place, also collision-checked); then the
 // path is done, or failed when the pose ended farther than goal_tolerance from the goal.
 
@@ -151,6 +153,8 @@ class PathTracker {
   // min(collision_time of the command, left + a small overshoot).
   std::optional<TrackStep> CheckAhead(const Pose2& pose, const TrackStep& step, double left);
   TrackStep Turn(double heading_error, const std::string& what);
+  // The turn in place the check ahead covers for a yaw rate and what is left of the turn (rad).
+  MotionPiece TurnPiece(const Pose2& pose, double omega, double left) const;
   TrackStep Drive(const Pose2& pose);
   double Progress() const;
 
@@ -163,6 +167,8 @@ class PathTracker {
   int hint_ = 0;
   bool correcting_ = false;
   bool aligning_goal_ = false;
+  bool cusp_aligned_ = false;   // the current run's start heading was taken at its cusp
+  bool aligning_cusp_ = false;  // turning to it
   int corrections_ = 0;
   double last_speed_ = 0.0;  // m/s, of the last velocity command
   double done_length_ = 0.0;

@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <map>
+#include <ostream>
 
 #include "common/angle.h"
 
@@ -57,6 +58,58 @@ INSTANTIATE_TEST_SUITE_P(Maneuvers, ClosedLoopTest,
                            return std::get<0>(param_info.param) + "_" +
                                   std::to_string(static_cast<int>(std::get<1>(param_info.param) * 10)) + "dHz";
                          });
+
+// The tracker must follow ANY feasible path of the planner, not the one shape it was tuned
+// on: the intersection turn planned with other search options (how greedily analytic shots
+// end the search, the heading resolution) gives other multi-point maneuvers (short arcs
+// before a cusp, turns in place or not), each tracked within the targets at 1 and 0.2 Hz.
+struct PlannerVariant {
+  const char* name;
+  double shot_cost_ratio;
+  int heading_bins;
+  double xy_resolution;
+  double turn_in_place_per_rad;  // m of cost per rad
+  bool shot_heuristic;
+};
+void PrintTo(const PlannerVariant& v, std::ostream* os) { *os << v.name; }
+
+class ClosedLoopPathShapeTest : public ::testing::TestWithParam<std::tuple<PlannerVariant, double>> {};
+
+TEST_P(ClosedLoopPathShapeTest, IntersectionTurnWithinTheTargets) {
+  const auto& [v, rate] = GetParam();
+  const TrackingScenario s = MakeScenario("intersection_turn", 0.15, [&](Se2PlannerOptions& po) {
+    po.analytic_shot_max_cost_ratio = v.shot_cost_ratio;
+    po.heading_bins = v.heading_bins;
+    po.xy_resolution = v.xy_resolution;
+    po.costs.turn_in_place_per_rad = v.turn_in_place_per_rad;
+    po.shot_heuristic = v.shot_heuristic;
+  });
+  ASSERT_EQ(s.error, "");
+  ClosedLoopOptions o;
+  o.pose_rate = rate;
+  const ClosedLoopResult r = RunClosedLoop(s.world, s.world, s.path, Footprint::Rectangle(3.3, 10.0), o);
+  ExpectOnTarget(r, std::string(v.name) + " at " + std::to_string(rate) + " Hz, " +
+                        std::to_string(s.path.pieces.size()) + " pieces");
+}
+
+// Shapes (planned when this was written): a short arc into a cusp then a tight reverse arc
+// (bins 36, turns dear); a short arc then a turn in place at the cusp (72 bins); a turn in
+// place without the arc (xy 0.1, 0.3); reverse arc, turn in place, reverse arc (turns
+// cheap); a turn across the crossing then 15 m reversed (72 bins, turns dear).
+INSTANTIATE_TEST_SUITE_P(
+    PathShapes, ClosedLoopPathShapeTest,
+    ::testing::Combine(::testing::Values(PlannerVariant{"ratio10_bins72", 1.0, 72, 0.2, 2.0, true},
+                                         PlannerVariant{"ratio20_xy01", 2.0, 36, 0.1, 2.0, true},
+                                         PlannerVariant{"xy03", 1.2, 36, 0.3, 2.0, true},
+                                         PlannerVariant{"cheap_turns", 1.2, 36, 0.2, 0.5, true},
+                                         PlannerVariant{"dear_turns", 1.2, 36, 0.2, 6.0, true},
+                                         PlannerVariant{"dear_turns_bins72", 1.2, 72, 0.2, 6.0, true},
+                                         PlannerVariant{"admissible_heuristic", 1.0, 36, 0.2, 2.0, false}),
+                       ::testing::Values(1.0, 0.2)),
+    [](const auto& param_info) {
+      return std::string(std::get<0>(param_info.param).name) + "_" +
+             std::to_string(static_cast<int>(std::get<1>(param_info.param) * 10)) + "dHz";
+    });
 
 TEST(ClosedLoopSafetyTest, AWallTheMapShowsLateStopsTheMinerShortOfIt) {
   const TrackingScenario& s = Scenario("straight_entry");

@@ -178,7 +178,10 @@ const std::vector<std::string>& ScenarioNames() {
   return names;
 }
 
-TrackingScenario MakeScenario(const std::string& name, double clearance) {
+TrackingScenario MakeScenario(const std::string& name, double clearance) { return MakeScenario(name, clearance, {}); }
+
+TrackingScenario MakeScenario(const std::string& name, double clearance,
+                              const std::function<void(Se2PlannerOptions&)>& adjust) {
   TrackingScenario s;
   s.name = name;
   MineOptions mine;
@@ -213,6 +216,7 @@ TrackingScenario MakeScenario(const std::string& name, double clearance) {
       return s;
     }
   }
+  if (adjust) adjust(po);
   const Se2Planner planner(s.world, Footprint::Rectangle(3.3, 10.0), po);
   const auto t0 = std::chrono::steady_clock::now();
   const Se2PlanResult r = planner.Plan(start, goal);

@@ -23,6 +23,7 @@
 #include "common/pose2.h"
 #include "planner/footprint.h"
 #include "planner/motion.h"
+#include "planner/se2_planner.h"
 #include "sim/odometry_model.h"
 #include "sim/skid_steer.h"
 #include "sim/vehicle_sim.h"
@@ -107,5 +108,9 @@ struct TrackingScenario {
 };
 const std::vector<std::string>& ScenarioNames();
 TrackingScenario MakeScenario(const std::string& name, double clearance);
+// The same with the planner's options changed by `adjust` after the scenario's own (other
+// path shapes for one maneuver: the tracker must follow any feasible path).
+TrackingScenario MakeScenario(const std::string& name, double clearance,
+                              const std::function<void(Se2PlannerOptions&)>& adjust);
 
 }  // namespace minenav::testing
