@@ -20,6 +20,7 @@
 #include "minenav/ladar_scan_t.hpp"
 #include "minenav/line_map_t.hpp"
 #include "minenav/line_segment_t.hpp"
+#include "minenav/mission_node_t.hpp"
 #include "minenav/mission_status_t.hpp"
 #include "minenav/odometry_t.hpp"
 #include "minenav/path_request_t.hpp"
@@ -28,6 +29,7 @@
 #include "minenav/pose2d_t.hpp"
 #include "minenav/pose_estimate_t.hpp"
 #include "minenav/task_plan_t.hpp"
+#include "minenav/task_request_t.hpp"
 #include "minenav/task_status_t.hpp"
 #include "minenav/task_t.hpp"
 #include "minenav/vehicle_truth_t.hpp"
@@ -52,16 +54,18 @@ TEST(LcmTypesTest, FingerprintsArePinned) {
       {"ladar_scan_t", -2038136047799717131LL, minenav::ladar_scan_t::getHash()},
       {"line_map_t", -419260473908764121LL, minenav::line_map_t::getHash()},
       {"line_segment_t", -6938642210381800720LL, minenav::line_segment_t::getHash()},
-      {"mission_status_t", 7947702355671879429LL, minenav::mission_status_t::getHash()},
+      {"mission_node_t", 5212168176119041012LL, minenav::mission_node_t::getHash()},  // issue 15
+      {"mission_status_t", 7973969827392793868LL, minenav::mission_status_t::getHash()},  // issue 15: progress, waiting_for, the task tree
       {"odometry_t", 1879946957910835790LL, minenav::odometry_t::getHash()},
       {"path_request_t", -9076065102670345754LL, minenav::path_request_t::getHash()},  // issue 13: allow_unknown
       {"path_segment_t", 3440628198772269525LL, minenav::path_segment_t::getHash()},
       {"path_t", -1701602323202045816LL, minenav::path_t::getHash()},
       {"pose2d_t", -1647330039494046938LL, minenav::pose2d_t::getHash()},
       {"pose_estimate_t", 1641264035168771739LL, minenav::pose_estimate_t::getHash()},
-      {"task_plan_t", -528774378514296404LL, minenav::task_plan_t::getHash()},
+      {"task_plan_t", -7475414412055944702LL, minenav::task_plan_t::getHash()},  // issue 15: request_id, status, reason
       {"task_status_t", 1986406185136541687LL, minenav::task_status_t::getHash()},
-      {"task_t", 3044351538407982655LL, minenav::task_t::getHash()},
+      {"task_request_t", -4740743851739562217LL, minenav::task_request_t::getHash()},  // issue 15
+      {"task_t", 4790446032985350541LL, minenav::task_t::getHash()},  // issue 15: face, clearance, allow_reverse, appendages
       {"vehicle_truth_t", 3644935162126682736LL, minenav::vehicle_truth_t::getHash()},
   };
   for (const auto& p : pinned) EXPECT_EQ(p.actual, p.hash) << p.name << " changed: old logs will not decode";

@@ -17,6 +17,7 @@
 #include "minenav/path_t.hpp"
 #include "minenav/pose_estimate_t.hpp"
 #include "minenav/task_plan_t.hpp"
+#include "minenav/task_request_t.hpp"
 #include "minenav/task_status_t.hpp"
 #include "minenav/vehicle_truth_t.hpp"
 #include "minenav/wire_check.hpp"
@@ -96,7 +97,7 @@ const std::vector<KnownMessageType>& KnownMessageTypes() {
       Entry<path_request_t>(),     Entry<path_t>(),             Entry<task_plan_t>(),
       Entry<task_status_t>(),      Entry<drive_command_t>(),    Entry<cutter_command_t>(),
       Entry<cutter_state_t>(),     Entry<heartbeat_t>(),        Entry<coordinator_command_t>(),
-      Entry<mission_status_t>(),
+      Entry<mission_status_t>(),    Entry<task_request_t>(),
   };
   return types;
 }
@@ -125,6 +126,8 @@ std::string ExpectedTypeForChannel(const std::string& channel) {
       {"SIM_WORLD", "line_map_t"},
       {"PATH_REQUEST", "path_request_t"}, {"PATH", "path_t"},
       {"TASK_PLAN", "task_plan_t"},       {"TASK_STATUS", "task_status_t"},
+      {"TASK_REQUEST", "task_request_t"}, {"DRIVE_PATH", "path_t"},
+      {"CUT_TASK", "cutter_command_t"},
       {"DRIVE_COMMAND", "drive_command_t"}, {"CUTTER_COMMAND", "cutter_command_t"},
       {"CUTTER_STATE", "cutter_state_t"}, {"HEARTBEAT", "heartbeat_t"},
       {"COORDINATOR_COMMAND", "coordinator_command_t"}, {"MISSION_STATUS", "mission_status_t"},
