@@ -1,0 +1,50 @@
+#include "coordinator/heartbeat_watch.h"
+
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+namespace minenav {
+namespace {
+
+HeartbeatInfo Beat(const std::string& process, HeartbeatState state, int64_t utime, const std::string& instance = "") {
+  HeartbeatInfo hb;
+  hb.process = process;
+  hb.instance = instance;
+  hb.state = state;
+  hb.utime = utime;
+  hb.message = "msg";
+  return hb;
+}
+
+TEST(HeartbeatWatchTest, ReadyMeansOkOrWarnAndRecent) {
+  HeartbeatWatch w({"mapper", "tracker", "cutter"}, 3.0);
+  EXPECT_EQ(w.NotReady(0), (std::vector<std::string>{"mapper: never seen", "tracker: never seen", "cutter: never seen"}));
+  w.OnHeartbeat(Beat("mapper", HeartbeatState::kOk, 1'000'000));
+  w.OnHeartbeat(Beat("tracker", HeartbeatState::kWarn, 1'000'000));
+  w.OnHeartbeat(Beat("cutter", HeartbeatState::kStarting, 1'000'000));
+  EXPECT_EQ(w.NotReady(1'500'000), std::vector<std::string>{"cutter: STARTING (msg)"});
+  w.OnHeartbeat(Beat("cutter", HeartbeatState::kOk, 2'000'000));
+  EXPECT_TRUE(w.AllReady(3'900'000));
+  // 3 s after the mapper's and the tracker's last heartbeat: exactly the limit is still ready.
+  EXPECT_TRUE(w.AllReady(4'000'000));
+  EXPECT_EQ(w.NotReady(4'200'000),
+            (std::vector<std::string>{"mapper: no heartbeat for 3.2 s", "tracker: no heartbeat for 3.2 s"}));
+  EXPECT_DOUBLE_EQ(w.Age("mapper", 4'200'000), 3.2);
+  EXPECT_DOUBLE_EQ(w.Age("nobody", 4'200'000), -1.0);
+}
+
+TEST(HeartbeatWatchTest, ErrorAndStoppingAreNotReadyAndInstancesAreTheirOwn) {
+  HeartbeatWatch w({"ladar_driver/front", "planner"}, 3.0);
+  w.OnHeartbeat(Beat("ladar_driver", HeartbeatState::kOk, 0, "rear"));
+  w.OnHeartbeat(Beat("planner", HeartbeatState::kError, 0));
+  EXPECT_EQ(w.NotReady(0), (std::vector<std::string>{"ladar_driver/front: never seen", "planner: ERROR (msg)"}));
+  w.OnHeartbeat(Beat("ladar_driver", HeartbeatState::kOk, 0, "front"));
+  w.OnHeartbeat(Beat("planner", HeartbeatState::kStopping, 0));
+  EXPECT_EQ(w.NotReady(0), std::vector<std::string>{"planner: STOPPING (msg)"});
+  EXPECT_TRUE(w.Ready("ladar_driver", 0)) << "the bare name is any instance";
+}
+
+}  // namespace
+}  // namespace minenav
