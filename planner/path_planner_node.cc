@@ -50,6 +50,8 @@ struct PathPlannerNode::PlannerCache {
 namespace {
 
 constexpr size_t kMaxPlannersPerMap = 8;
+// Answers kept for repeated requests and for DRIVE_PATH (a mission holds a handful at a time).
+constexpr size_t kAnswersKept = 64;
 // A request that does not allow reversing: a metre reversed costs this many driven forward
 // (the largest costs.reverse_factor), and a path that still reverses is refused.
 constexpr double kNoReverseFactor = 100.0;
@@ -73,6 +75,8 @@ void DeclareOptions(ConfigSchema& s, PathPlannerNodeOptions& o) {
   s.AddChannel("pose_channel", &o.pose_channel, "subscribes", "pose_estimate_t",
                "live: the vehicle's pose estimate (replanning starts there)");
   s.AddChannel("path_channel", &o.path_channel, "publishes", "path_t", "live: the answers, tagged with the request_id");
+  s.AddChannel("drive_path_channel", &o.drive_path_channel, "subscribes", "path_t",
+               "live: the path being driven (the coordinator's): the one re-checked and replanned when the map changes");
   s.AddDouble("deadline", &o.deadline, "s", "live: wall time a search may take before it is stopped", 0.001, 3600.0);
   s.AddDouble("default_clearance", &o.default_clearance, "m", "live: clearance of a request that gives 0", 0.0, 10.0);
   s.AddDouble("max_clearance", &o.max_clearance, "m", "live: larger requested clearances are refused", 0.0, 10.0);
@@ -115,6 +119,8 @@ PathPlannerNode::PathPlannerNode(NodeRuntime& runtime, PathPlannerNodeOptions op
   Subscribe<path_request_t>(runtime_.bus(), options_.request_channel,
                             [this](const path_request_t& m) { OnRequest(m); });
   Subscribe<contour_map_t>(runtime_.bus(), options_.map_channel, [this](const contour_map_t& m) { OnMap(m); });
+  if (!options_.drive_path_channel.empty())
+    Subscribe<path_t>(runtime_.bus(), options_.drive_path_channel, [this](const path_t& m) { OnDrivePath(m); });
   Subscribe<pose_estimate_t>(runtime_.bus(), options_.pose_channel, [this](const pose_estimate_t& m) {
     const PoseEstimate e = FromLcm(m);
     if (e.converged) pose_ = e.pose;
@@ -142,6 +148,11 @@ void PathPlannerNode::Publish(const path_t& path) {
 void PathPlannerNode::OnRequest(const path_request_t& request) {
   ++requests_;
   const int64_t now = runtime_.NowUtime();
+  if (pending_.count(request.request_id)) return;  // a repeat while its search runs
+  if (const auto it = answered_.find(request.request_id); it != answered_.end()) {
+    Publish(it->second.message);  // a repeat: the same answer again
+    return;
+  }
   if (const std::string why = ValidateRequest(request, options_); !why.empty()) {
     MINENAV_LOG(kWarn) << "request " << request.request_id << " refused: " << why;
     Publish(NoPathToLcm(request.request_id, now, "invalid request: " + why));
@@ -154,10 +165,39 @@ void PathPlannerNode::OnRequest(const path_request_t& request) {
   Job job;
   job.request = request;
   job.map = map_;
-  if (std::optional<Job> dropped = worker_->Push(std::move(job)))
-    if (!dropped->replan)
+  pending_.insert(request.request_id);
+  if (std::optional<Job> dropped = worker_->Push(std::move(job))) {
+    if (!dropped->replan) {
+      pending_.erase(dropped->request.request_id);
       Publish(NoPathToLcm(dropped->request.request_id, now,
                           "dropped: " + std::to_string(options_.queue_capacity) + " newer searches waiting"));
+    }
+  }
+}
+
+void PathPlannerNode::OnDrivePath(const path_t& m) {
+  follow_drive_path_ = true;
+  if (!m.feasible) {
+    if (active_ && active_->request.request_id == m.request_id) active_.reset();
+    return;
+  }
+  const auto it = answered_.find(m.request_id);
+  if (it != answered_.end() && it->second.path) active_ = it->second.path;
+}
+
+void PathPlannerNode::Remember(const Answer& a) {
+  const int64_t id = a.request.request_id;
+  if (answered_.find(id) == answered_.end()) {
+    answered_order_.push_back(id);
+    if (answered_order_.size() > kAnswersKept) {
+      answered_.erase(answered_order_.front());
+      answered_order_.pop_front();
+    }
+  }
+  Answered& stored = answered_[id];
+  stored.message = a.message;
+  if (a.path) stored.path = Active{a.request, *a.path};
+  else stored.path.reset();
 }
 
 void PathPlannerNode::OnMap(const contour_map_t& m) {
@@ -186,12 +226,19 @@ void PathPlannerNode::OnMap(const contour_map_t& m) {
 
 void PathPlannerNode::Poll() {
   for (Answer& a : worker_->TakeOutbox()) {
-    if (a.path) active_ = Active{a.request, *a.path};
-    else if (a.publish && active_ && active_->request.request_id == a.request.request_id)
-      active_.reset();  // the active path is blocked and no other was found
+    const int64_t id = a.request.request_id;
+    const bool is_active = active_ && active_->request.request_id == id;
+    // Without DRIVE_PATH the last feasible answer is the path driven; with it, only a
+    // replanned active path replaces the active one.
+    if (a.path && (!follow_drive_path_ || is_active)) active_ = Active{a.request, *a.path};
+    else if (a.publish && is_active && !a.path) active_.reset();  // blocked and no other path found
     if (a.replanned) ++replans_;
     a.message.utime = runtime_.NowUtime();  // the worker reads no clock
-    if (a.publish) Publish(a.message);
+    pending_.erase(id);
+    if (a.publish) {
+      Remember(a);
+      Publish(a.message);
+    }
   }
 }
 

@@ -18,6 +18,13 @@
 //                 pose to the same goal and publishes a PATH with the same request_id and the
 //                 status "replanned: <why>".
 //   POSE          the vehicle's estimate (pose_estimate_t; converged estimates only).
+//   DRIVE_PATH    path_t: the path the tracker drives now (the coordinator forwards one of the
+//                 answers there, and may hold the next subtask's path planned ahead). Once
+//                 anything arrives there, the active path (the one re-checked and replanned) is
+//                 the answer last forwarded on it (feasible = false: none); before that, the
+//                 last feasible answer.
+//   A repeated request_id (the coordinator re-sends until it hears the answer) is answered
+//   again with the stored answer, or ignored while its search runs: never planned twice.
 //   PATH          path_t: feasible with the motions, or feasible = false and the one-line reason.
 // A request with allow_reverse = false is planned with reversing priced at 100 m a metre and
 // refused when the path found still reverses.
@@ -25,6 +32,9 @@
 #include <atomic>
 #include <chrono>
 #include <cstdint>
+#include <deque>
+#include <map>
+#include <set>
 #include <memory>
 #include <optional>
 #include <string>
@@ -49,6 +59,7 @@ struct PathPlannerNodeOptions {
   std::string map_channel = "CONTOUR_MAP";
   std::string pose_channel = "POSE";
   std::string path_channel = "PATH";
+  std::string drive_path_channel = "DRIVE_PATH";
   double deadline = 5.0;            // s of wall time per search (request or replan; not the planner's setup for a new map). Default 5.
   double default_clearance = 0.1;   // m, used when a request's clearance is 0. Default 0.1.
   double max_clearance = 2.0;       // m, larger requested clearances are refused. Default 2.
@@ -92,6 +103,8 @@ class PathPlannerNode {
  private:
   void OnRequest(const path_request_t& request);
   void OnMap(const contour_map_t& map);
+  void OnDrivePath(const path_t& path);
+  void Remember(const Answer& answer);
   void Publish(const path_t& path);
   void Poll();
   Answer Handle(Job& job);  // worker thread
@@ -107,6 +120,15 @@ class PathPlannerNode {
     PlannedPath path;
   };
   std::optional<Active> active_;
+  bool follow_drive_path_ = false;  // DRIVE_PATH names the active path (something arrived there)
+  // The answers of recent requests (repeats are answered from here; DRIVE_PATH names one).
+  struct Answered {
+    path_t message{};
+    std::optional<Active> path;
+  };
+  std::map<int64_t, Answered> answered_;
+  std::deque<int64_t> answered_order_;
+  std::set<int64_t> pending_;  // request ids queued or being searched
   int64_t requests_ = 0, answers_ = 0, replans_ = 0;
   std::atomic<int64_t> planners_built_{0};
   // Worker-thread state: the planners of the map version in force.

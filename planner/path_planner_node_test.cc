@@ -249,6 +249,59 @@ TEST(PathPlannerNode, AWallAcrossTheActivePathIsAvoidedByAReplannedPathWithTheSa
   EXPECT_EQ(h.node.replans(), 1);
 }
 
+TEST(PathPlannerNode, ARepeatedRequestIdIsAnsweredAgainNotPlannedTwice) {
+  Harness h;
+  h.fake.bus().InjectMessage("CONTOUR_MAP", MapMessage(1, {Room()}, h.now()));
+  // Sent three times before the answer (the coordinator re-sends until it hears one).
+  for (int i = 0; i < 3; ++i)
+    h.fake.bus().InjectMessage("PATH_REQUEST", Request(77, {7, 12, 0}, {33, 12, 0}, h.now()));
+  std::vector<path_t> paths = h.WaitForPaths(1);
+  ASSERT_EQ(paths.size(), 1u);
+  paths = h.WaitForPaths(2, 0.5);
+  EXPECT_EQ(paths.size(), 1u) << "repeats during the search are not planned again";
+  // A repeat after the answer: the stored answer, byte for byte.
+  h.fake.bus().InjectMessage("PATH_REQUEST", Request(77, {7, 12, 0}, {33, 12, 0}, h.now()));
+  paths = h.WaitForPaths(2);
+  ASSERT_EQ(paths.size(), 2u);
+  EXPECT_EQ(EncodeMessage(paths[1]), EncodeMessage(paths[0]));
+  EXPECT_EQ(h.node.planners_built(), 1);
+}
+
+TEST(PathPlannerNode, WithDrivePathTheForwardedPathIsTheOneReplanned) {
+  Harness h;
+  h.fake.bus().InjectMessage("CONTOUR_MAP", MapMessage(1, {Room()}, h.now()));
+  // 50 is driven; 51 is the next subtask's path planned ahead (not driven yet).
+  h.fake.bus().InjectMessage("PATH_REQUEST", Request(50, {7, 12, 0}, {33, 12, 0}, h.now()));
+  std::vector<path_t> paths = h.WaitForPaths(1);
+  ASSERT_EQ(paths.size(), 1u);
+  h.fake.bus().InjectMessage("DRIVE_PATH", paths[0]);
+  h.fake.bus().InjectMessage("PATH_REQUEST", Request(51, {33, 12, 0}, {7, 20, 0}, h.now()));
+  paths = h.WaitForPaths(2);
+  ASSERT_EQ(paths.size(), 2u);
+  ASSERT_TRUE(paths[1].feasible) << paths[1].status;
+  // A wall across 50's way (x 19..21, y 10..14): 50 is replanned, not 51.
+  pose_estimate_t pose{};
+  pose.utime = h.now();
+  pose.source = "clue";
+  pose.pose = ToLcm(Pose2(9, 12, 0));
+  pose.converged = true;
+  pose.status = "ok";
+  h.fake.bus().InjectMessage("POSE", pose);
+  h.fake.bus().InjectMessage("CONTOUR_MAP", MapMessage(2, {Room(), Box(19, 10, 21, 14)}, h.now()));
+  paths = h.WaitForPaths(3);
+  ASSERT_EQ(paths.size(), 3u);
+  EXPECT_EQ(paths[2].request_id, 50);
+  EXPECT_EQ(paths[2].status.rfind("replanned: ", 0), 0u) << paths[2].status;
+  // Canceled on DRIVE_PATH: nothing is active, a new map replans nothing.
+  path_t cancel = paths[2];
+  cancel.feasible = false;
+  cancel.num_segments = 0;
+  cancel.segments.clear();
+  h.fake.bus().InjectMessage("DRIVE_PATH", cancel);
+  h.WaitForPaths(4, 0.2);
+  EXPECT_FALSE(h.node.has_active_path());
+}
+
 TEST(PathPlannerNode, ACompressedMapIsReadAndARepeatedRequestReusesThePlanner) {
   Harness h;
   // Many small contours: the plain encoding exceeds the compression threshold.
