@@ -219,8 +219,8 @@ std::vector<size_t> Supervisor::BeginStop(const std::string& reason) {
       p.stopped_not_ready = false;  // its exit is now part of the fleet's stop
       to_signal.push_back(i);
     } else if (p.state == ProcessState::kWaiting || p.state == ProcessState::kRestarting) {
+      p.reason = p.state == ProcessState::kWaiting ? "never started" : "not restarted";
       p.state = ProcessState::kStopped;
-      p.reason = "never started again: the fleet stopped";
     }
   }
   return to_signal;
@@ -266,7 +266,7 @@ std::vector<ProcessStatus> Supervisor::Status(int64_t now) const {
       case ProcessState::kStopping: row.state_text = "stopping"; break;
       case ProcessState::kExited: row.state_text = "exited: " + p.reason; break;
       case ProcessState::kGivenUp: row.state_text = "GIVEN UP: " + p.reason; break;
-      case ProcessState::kStopped: row.state_text = "stopped"; break;
+      case ProcessState::kStopped: row.state_text = p.reason.empty() ? "stopped" : "stopped (" + p.reason + ")"; break;
     }
     rows.push_back(std::move(row));
   }

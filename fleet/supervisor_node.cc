@@ -75,8 +75,9 @@ SupervisorNode::SupervisorNode(NodeRuntime& runtime, FleetSpec fleet, const Supe
   });
   runtime_.AddTimer(kPollPeriod, [this](int64_t now) { Poll(now); });
   if (options_.status_period > 0)
-    runtime_.AddTimer(options_.status_period, [this](int64_t now) {
-      if (now > started_utime_) PrintStatus(now);  // not at the very start: nothing to see yet
+    runtime_.AddTimer(options_.status_period, [this, first = true](int64_t now) mutable {
+      if (!first) PrintStatus(now);  // not when the timer first fires, at the start: nothing to see yet
+      first = false;
     });
   runtime_.OnShutdown([this] {
     StopFleet(NodeRuntime::StopSignalled() ? "stop signal" : "the supervisor's --run-for is over");
@@ -88,7 +89,6 @@ SupervisorNode::SupervisorNode(NodeRuntime& runtime, FleetSpec fleet, const Supe
 }
 
 int SupervisorNode::Run() {
-  started_utime_ = runtime_.NowUtime();
   MINENAV_LOG(kInfo) << "supervising " << supervisor_.fleet().processes.size() << " processes of "
                      << supervisor_.fleet().source << ", logs in " << options_.out;
   runtime_.Run();

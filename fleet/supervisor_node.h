@@ -51,7 +51,6 @@ class SupervisorNode {
   Supervisor supervisor_;
   std::map<size_t, pid_t> running_;         // process index -> pid
   std::map<size_t, int64_t> kill_at_;       // SIGKILL due (stopped for readiness)
-  int64_t started_utime_ = 0;
 };
 
 }  // namespace minenav

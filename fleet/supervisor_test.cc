@@ -165,6 +165,28 @@ TEST(Supervisor, ARequiredProcessGivenUpEndsTheFleet) {
   EXPECT_TRUE(sup.NoneRunning());
 }
 
+TEST(Supervisor, StoppingSignalsTheRunningOnesAndStartsNothingMore) {
+  Supervisor sup(Fleet("[process a]\ncommand = /b/vehicle_sim\ngroup = g\nready = heartbeat\n"
+                       "[process b]\ncommand = y\ngroup = g\nafter = a\n"
+                       "[process c]\ncommand = z\ngroup = g\n"),
+                 FastRestarts());
+  EXPECT_EQ(Starts(sup.Tick(kT0)), (std::vector<size_t>{0, 2}));
+  sup.OnStarted(0, 5, kT0);
+  sup.OnStarted(2, 6, kT0);
+  sup.OnExited(2, ExitStatus{1, 0}, kT0 + kS);  // c restarts in 0.5 s
+  EXPECT_EQ(sup.BeginStop("stop signal"), (std::vector<size_t>{0}));
+  EXPECT_TRUE(sup.stopping());
+  EXPECT_FALSE(sup.NoneRunning());
+  EXPECT_TRUE(sup.Tick(kT0 + 10 * kS).empty()) << "no restart of c, no start of b";
+  sup.OnExited(0, ExitStatus{0, 0}, kT0 + 2 * kS);
+  EXPECT_TRUE(sup.NoneRunning());
+  const std::vector<ProcessStatus> rows = sup.Status(kT0 + 2 * kS);
+  EXPECT_EQ(rows[0].state_text, "stopped (exit code 0)");
+  EXPECT_EQ(rows[1].state_text, "stopped (never started)");
+  EXPECT_EQ(rows[2].state_text, "stopped (not restarted)");
+  EXPECT_FALSE(sup.end()) << "a stop from outside is no end of the fleet by itself";
+}
+
 TEST(Supervisor, AProcessThatEndsTheFleetGivesItsExitCode) {
   Supervisor sup(Fleet("[process client]\ncommand = x\ngroup = g\nends_fleet = true\n[process b]\ncommand = y\ngroup = g\n"),
                  FastRestarts());
