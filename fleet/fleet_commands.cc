@@ -15,6 +15,7 @@
 #include "common/node/lcm_bus.h"
 #include "common/node/node_runtime.h"
 #include "fleet/child_launcher.h"
+#include "fleet/heartbeat_conversion.h"
 #include "fleet/status_table.h"
 #include "fleet/supervisor_node.h"
 #include "fleet/systemd_units.h"
@@ -39,6 +40,18 @@ std::string DefaultOutFolder() {
   char stamp[32];
   std::strftime(stamp, sizeof(stamp), "%Y%m%d-%H%M%S", &tm);
   return std::string("out/fleet-") + stamp;
+}
+
+// What ${OUT} and ${BIN} stand for and which groups to read, for `check` and `units`.
+struct FleetFileOptions {
+  std::string groups;
+  std::string out;
+  std::string bin = ProgramFolder();
+};
+void DeclareOptions(ConfigSchema& schema, FleetFileOptions& options, const std::string& where) {
+  schema.AddString("groups", &options.groups, "host groups, comma-separated; empty = all");
+  schema.AddString("out", &options.out, "the output folder ${OUT} stands for " + where);
+  schema.AddString("bin", &options.bin, "the folder ${BIN} stands for " + where + " (default: the folder of this program)");
 }
 
 // The positional FLEETFILE and NAME=VALUE words of a parsed schema.
@@ -130,19 +143,18 @@ int RunSupervisorCommand(std::vector<std::string>& args) {
 }
 
 int RunCheckCommand(const std::vector<std::string>& args) {
-  std::string groups, out = "out/fleet-<UTC time>", bin = ProgramFolder();
+  FleetFileOptions file;
+  file.out = "out/fleet-<UTC time>";
   ConfigSchema schema("fleet check",
                       "Usage: fleet check FLEETFILE [NAME=VALUE ...] [options]\n"
                       "Reads a fleet file as `fleet run` would (variables, groups, programs on $PATH) and prints\n"
                       "each process in start order: group, what it waits for, readiness, restart policy and\n"
                       "command. Exit 2 with one line naming file, line and key when something is wrong.");
-  schema.AddString("groups", &groups, "host groups, comma-separated; empty = all");
-  schema.AddString("out", &out, "the output folder ${OUT} stands for");
-  schema.AddString("bin", &bin, "the folder ${BIN} stands for (default: the folder of this program)");
+  DeclareOptions(schema, file, "in the plan");
   schema.SetPositional("FLEETFILE [NAME=VALUE ...]", 1, 1000);
   if (schema.Parse(args) == ParseOutcome::kExit) return 0;
   const FleetArguments a = SplitPositional(schema.positional(), 1);
-  const FleetSpec fleet = LoadFleet(a.path, a.overrides, out, bin, groups, true);
+  const FleetSpec fleet = LoadFleet(a.path, a.overrides, file.out, file.bin, file.groups, true);
   std::vector<std::vector<std::string>> rows;
   for (const size_t i : StartOrder(fleet)) {
     const ProcessSpec& p = fleet.processes[i];
@@ -174,19 +186,8 @@ int RunStatusCommand(const std::vector<std::string>& args) {
   LcmBus bus(ResolveLcmUrl(url), 1000);
   const WallClock clock;
   HeartbeatMonitor heartbeats;
-  Subscribe<heartbeat_t>(bus, channel, [&](const heartbeat_t& m) {
-    HeartbeatSample s;
-    s.received = clock.NowUtime();
-    s.utime = m.utime;
-    s.process = m.process;
-    s.instance = m.instance;
-    s.pid = m.pid;
-    s.state = static_cast<HeartbeatState>(m.state);
-    s.message = m.message;
-    s.messages_in = m.messages_in;
-    s.messages_bad = m.messages_bad;
-    heartbeats.Add(s);
-  });
+  Subscribe<heartbeat_t>(bus, channel,
+                         [&](const heartbeat_t& m) { heartbeats.Add(HeartbeatSampleFromLcm(m, clock.NowUtime())); });
   NodeRuntime::InstallSignalHandlers();
   const int64_t end = clock.NowUtime() + static_cast<int64_t>(listen * 1e6);
   while (clock.NowUtime() < end && !NodeRuntime::StopSignalled()) bus.HandleFor(50'000);
@@ -199,7 +200,8 @@ int RunStatusCommand(const std::vector<std::string>& args) {
 }
 
 int RunUnitsCommand(const std::vector<std::string>& args) {
-  std::string groups, out = "/var/lib/minenav", bin = ProgramFolder();
+  FleetFileOptions file;
+  file.out = "/var/lib/minenav";
   RestartOptions restart;
   UnitOptions units;
   ConfigSchema schema("fleet units",
@@ -208,9 +210,7 @@ int RunUnitsCommand(const std::vector<std::string>& args) {
                       "host group into UNITDIR: Type=notify with a watchdog for the processes on the node runtime\n"
                       "(those with a heartbeat), the restart policy, backoff and crash loop as Restart=, RestartSec=,\n"
                       "StartLimitBurst= / StartLimitIntervalSec=, `after` as After= / Wants=.");
-  schema.AddString("groups", &groups, "host groups, comma-separated; empty = all");
-  schema.AddString("out", &out, "the output folder ${OUT} stands for on the vehicle");
-  schema.AddString("bin", &bin, "the folder ${BIN} stands for on the vehicle (default: the folder of this program)");
+  DeclareOptions(schema, file, "on the vehicle");
   schema.AddString("prefix", &units.prefix, "unit names are PREFIX-PROCESS.service and PREFIX-GROUP.target");
   schema.AddString("lcm_url", &units.lcm_url, "LCM_DEFAULT_URL of every unit (ttl=1: one hop, vehicle to base station)");
   schema.AddDouble("watchdog_sec", &units.watchdog_sec, "s", "WatchdogSec= of the Type=notify units", 1.0, 3600.0);
@@ -225,7 +225,7 @@ int RunUnitsCommand(const std::vector<std::string>& args) {
   const FleetArguments a = SplitPositional(schema.positional(), 2);
   const std::string unit_dir = schema.positional()[1];
   // The programs are the vehicle's (under --bin), not this machine's: not looked up here.
-  const FleetSpec fleet = LoadFleet(a.path, a.overrides, out, bin, groups, false);
+  const FleetSpec fleet = LoadFleet(a.path, a.overrides, file.out, file.bin, file.groups, false);
   units.source_note = "fleet units " + a.path + " ...";
   std::error_code ec;
   fs::create_directories(unit_dir, ec);

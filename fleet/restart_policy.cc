@@ -3,7 +3,8 @@
 #include <csignal>
 #include <cmath>
 #include <cstring>
-#include <sstream>
+
+#include "fleet/number_text.h"
 
 namespace minenav {
 
@@ -11,11 +12,7 @@ namespace {
 
 int64_t SecondsToUs(double s) { return static_cast<int64_t>(std::llround(s * 1e6)); }
 
-std::string FormatSeconds(double s) {
-  std::ostringstream os;
-  os << s << " s";
-  return os.str();
-}
+std::string FormatSeconds(double s) { return NumberText(s) + " s"; }
 
 }  // namespace
 
@@ -91,10 +88,8 @@ AfterExit DecideAfterExit(RestartPolicy policy, const RestartOptions& options, F
   after.kind = AfterExit::Kind::kRestart;
   const int64_t delay = BackoffDelayUs(options, history.in_a_row());
   after.restart_at = now + delay;
-  std::ostringstream os;
-  os << what << ": restarting in " << static_cast<double>(delay) * 1e-6 << " s (failure " << history.in_a_row()
-     << " in a row)";
-  after.reason = os.str();
+  after.reason = what + ": restarting in " + NumberText(static_cast<double>(delay) * 1e-6) + " s (failure " +
+                 std::to_string(history.in_a_row()) + " in a row)";
   return after;
 }
 

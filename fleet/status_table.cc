@@ -1,7 +1,8 @@
 #include "fleet/status_table.h"
 
 #include <algorithm>
-#include <sstream>
+
+#include "fleet/number_text.h"
 
 namespace minenav {
 
@@ -10,14 +11,6 @@ namespace {
 // A heartbeat's message is one line, but may be long: the table keeps its start.
 constexpr size_t kMessageWidth = 60;
 
-std::string Fixed(double v, int decimals) {
-  std::ostringstream os;
-  os.setf(std::ios::fixed);
-  os.precision(decimals);
-  os << v;
-  return os.str();
-}
-
 std::string Shorten(const std::string& text, size_t width) {
   return text.size() <= width ? text : text.substr(0, width - 3) + "...";
 }
@@ -25,8 +18,8 @@ std::string Shorten(const std::string& text, size_t width) {
 // Age, state, rate and message of a heartbeat ("-" for each when none was heard).
 std::vector<std::string> HeartbeatCells(const std::optional<HeartbeatRecord>& hb, int64_t now) {
   if (!hb) return {"-", "-", "-", ""};
-  return {Fixed(hb->age_s(now), 1) + " s", ToString(hb->last.state),
-          hb->messages_per_s ? Fixed(*hb->messages_per_s, 1) : "-", Shorten(hb->last.message, kMessageWidth)};
+  return {FixedText(hb->age_s(now), 1) + " s", ToString(hb->last.state),
+          hb->messages_per_s ? FixedText(*hb->messages_per_s, 1) : "-", Shorten(hb->last.message, kMessageWidth)};
 }
 
 }  // namespace
@@ -67,8 +60,8 @@ std::string BusStatusTable(const HeartbeatMonitor& heartbeats, int64_t now) {
   for (const HeartbeatRecord* hb : heartbeats.All()) {
     const HeartbeatSample& s = hb->last;
     cells.push_back({s.instance.empty() ? s.process : s.process + ":" + s.instance, std::to_string(s.pid),
-                     Fixed(hb->age_s(now), 1) + " s", ToString(s.state),
-                     hb->messages_per_s ? Fixed(*hb->messages_per_s, 1) : "-", std::to_string(s.messages_bad),
+                     FixedText(hb->age_s(now), 1) + " s", ToString(s.state),
+                     hb->messages_per_s ? FixedText(*hb->messages_per_s, 1) : "-", std::to_string(s.messages_bad),
                      Shorten(s.message, kMessageWidth)});
   }
   return FormatTable({"process", "pid", "heartbeat", "state", "msgs/s", "bad", "message"}, cells);

@@ -3,19 +3,14 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
-#include <sstream>
+
+#include "fleet/number_text.h"
 
 namespace minenav {
 
 namespace {
 
-std::string Seconds(int64_t us) {
-  std::ostringstream os;
-  os.setf(std::ios::fixed);
-  os.precision(1);
-  os << static_cast<double>(std::max<int64_t>(0, us)) * 1e-6 << " s";
-  return os.str();
-}
+std::string Seconds(int64_t us) { return FixedText(static_cast<double>(std::max<int64_t>(0, us)) * 1e-6, 1) + " s"; }
 
 bool Satisfies(Readiness readiness, HeartbeatState state) {
   switch (readiness) {

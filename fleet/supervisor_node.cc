@@ -13,19 +13,13 @@
 #include "common/log.h"
 #include "common/node/bus.h"
 #include "fleet/child_launcher.h"
+#include "fleet/heartbeat_conversion.h"
 #include "fleet/status_table.h"
 #include "minenav/heartbeat_t.hpp"
 
 namespace minenav {
 
 namespace {
-
-static_assert(static_cast<int>(HeartbeatState::kStarting) == heartbeat_t::STARTING &&
-                  static_cast<int>(HeartbeatState::kOk) == heartbeat_t::OK &&
-                  static_cast<int>(HeartbeatState::kWarn) == heartbeat_t::WARN &&
-                  static_cast<int>(HeartbeatState::kError) == heartbeat_t::ERROR &&
-                  static_cast<int>(HeartbeatState::kStopping) == heartbeat_t::STOPPING,
-              "fleet/heartbeat_monitor.h mirrors heartbeat_t's states");
 
 // How often children are reaped and the supervision ticks.
 constexpr double kPollPeriod = 0.05;  // s
@@ -61,17 +55,7 @@ void DeclareOptions(ConfigSchema& schema, SupervisorOptions& options) {
 SupervisorNode::SupervisorNode(NodeRuntime& runtime, FleetSpec fleet, const SupervisorOptions& options)
     : runtime_(runtime), options_(options), supervisor_(std::move(fleet), options.restart) {
   Subscribe<heartbeat_t>(runtime_.bus(), runtime_.options().heartbeat_channel, [this](const heartbeat_t& m) {
-    HeartbeatSample s;
-    s.received = runtime_.NowUtime();
-    s.utime = m.utime;
-    s.process = m.process;
-    s.instance = m.instance;
-    s.pid = m.pid;
-    s.state = static_cast<HeartbeatState>(m.state);
-    s.message = m.message;
-    s.messages_in = m.messages_in;
-    s.messages_bad = m.messages_bad;
-    supervisor_.OnHeartbeat(s);
+    supervisor_.OnHeartbeat(HeartbeatSampleFromLcm(m, runtime_.NowUtime()));
   });
   runtime_.AddTimer(kPollPeriod, [this](int64_t now) { Poll(now); });
   if (options_.status_period > 0)
@@ -80,7 +64,7 @@ SupervisorNode::SupervisorNode(NodeRuntime& runtime, FleetSpec fleet, const Supe
       first = false;
     });
   runtime_.OnShutdown([this] {
-    StopFleet(NodeRuntime::StopSignalled() ? "stop signal" : "the supervisor's --run-for is over");
+    StopFleet(NodeRuntime::StopSignalled() ? "stop signal" : "the supervisor's run ended (--run-for)");
   });
   struct sigaction action {};
   action.sa_handler = &OnStatusSignal;

@@ -4,15 +4,11 @@
 #include <cmath>
 #include <sstream>
 
+#include "fleet/number_text.h"
+
 namespace minenav {
 
 namespace {
-
-std::string Number(double v) {
-  std::ostringstream os;
-  os << v;
-  return os.str();
-}
 
 // systemd expands %-specifiers and $VARIABLES in ExecStart= and Environment=: double them.
 std::string EscapeSystemd(const std::string& text) {
@@ -62,7 +58,7 @@ std::string Service(const ProcessSpec& p, const RestartOptions& restart, const U
   u << "After=" << after << "\n";
   u << "Wants=" << wants << "\n";
   // The crash loop: this many starts within the interval and systemd stops restarting.
-  u << "StartLimitIntervalSec=" << Number(restart.crash_loop_window) << "\n";
+  u << "StartLimitIntervalSec=" << NumberText(restart.crash_loop_window) << "\n";
   u << "StartLimitBurst=" << restart.crash_loop_failures << "\n";
   u << "\n[Service]\n";
   if (p.has_heartbeat()) {
@@ -70,7 +66,7 @@ std::string Service(const ProcessSpec& p, const RestartOptions& restart, const U
     // of WatchdogSec, STATUS= with its heartbeat message and STOPPING=1 at shutdown.
     u << "Type=notify\n";
     u << "NotifyAccess=main\n";
-    u << "WatchdogSec=" << Number(options.watchdog_sec) << "\n";
+    u << "WatchdogSec=" << NumberText(options.watchdog_sec) << "\n";
   } else {
     u << "Type=simple\n";
   }
@@ -80,10 +76,10 @@ std::string Service(const ProcessSpec& p, const RestartOptions& restart, const U
   if (!options.environment_file.empty()) u << "EnvironmentFile=-" << options.environment_file << "\n";
   if (!options.user.empty()) u << "User=" << options.user << "\n";
   u << "Restart=" << SystemdRestart(p.restart) << "\n";
-  u << "RestartSec=" << Number(restart.backoff_initial) << "\n";
+  u << "RestartSec=" << NumberText(restart.backoff_initial) << "\n";
   // SIGINT like the supervisor: the node writes its outputs; SIGKILL after the timeout.
   u << "KillSignal=SIGINT\n";
-  u << "TimeoutStopSec=" << Number(options.stop_timeout_sec) << "\n";
+  u << "TimeoutStopSec=" << NumberText(options.stop_timeout_sec) << "\n";
   return u.str();
 }
 
