@@ -8,7 +8,6 @@
 #include <cstdio>
 #include <ctime>
 #include <fstream>
-#include <thread>
 
 #include "common/log.h"
 #include "common/node/bus.h"
@@ -163,7 +162,7 @@ void SupervisorNode::StopFleet(const std::string& reason) {
   }
   PrintEvents();
   // Wait for them all, SIGKILL the ones still there after the grace period. Polled here,
-  // outside the node loop: the loop has ended.
+  // outside the node loop (it has ended).
   using SteadyClock = std::chrono::steady_clock;
   const auto kill_time = SteadyClock::now() + std::chrono::duration<double>(options_.stop_grace);
   bool killed = false;
@@ -179,7 +178,8 @@ void SupervisorNode::StopFleet(const std::string& reason) {
       }
       killed = true;
     }
-    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    // Waits on the bus: the processes' STOPPING heartbeats land in the final table.
+    runtime_.bus().HandleFor(10'000);
   }
   runtime_.SetStatus(static_cast<int8_t>(supervisor_.Health()), supervisor_.Summary());
 }
