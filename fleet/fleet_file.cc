@@ -1,7 +1,7 @@
 #include "fleet/fleet_file.h"
 
 #include <algorithm>
-#include <cmath>
+#include <cctype>
 #include <functional>
 #include <set>
 #include <sstream>

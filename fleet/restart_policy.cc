@@ -1,5 +1,6 @@
 #include "fleet/restart_policy.h"
 
+#include <algorithm>
 #include <csignal>
 #include <cmath>
 #include <cstring>
