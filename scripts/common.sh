@@ -7,7 +7,8 @@ MINENAV_JOBS="${MINENAV_JOBS:-$(nproc)}"
 
 # Debian packages the project needs; installed with apt-get only when missing.
 MINENAV_PACKAGES=(build-essential cmake liblcm-dev liblcm-bin libeigen3-dev libgtest-dev
-                  libgmock-dev zlib1g-dev libbz2-dev nlohmann-json3-dev iproute2 util-linux python3)
+                  libgmock-dev zlib1g-dev libbz2-dev nlohmann-json3-dev iproute2 util-linux python3
+                  libsystemd-dev)
 
 # minenav_install_missing PACKAGE...: apt-get installs those of the Debian packages not installed.
 minenav_install_missing() {

@@ -1,5 +1,6 @@
 #include "common/node/node_runtime.h"
 
+#include <systemd/sd-daemon.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -119,6 +120,7 @@ void NodeRuntime::Start() {
   if (options_.heartbeat_period > 0) {
     AddTimer(options_.heartbeat_period, [this](int64_t) { PublishHeartbeat(state_); });
   }
+  if (!batch()) StartServiceWatchdog();
 }
 
 void NodeRuntime::StartWith(std::unique_ptr<Bus> bus, Clock& clock) {
@@ -129,6 +131,25 @@ void NodeRuntime::StartWith(std::unique_ptr<Bus> bus, Clock& clock) {
   if (options_.heartbeat_period > 0) {
     AddTimer(options_.heartbeat_period, [this](int64_t) { PublishHeartbeat(state_); });
   }
+  StartServiceWatchdog();
+}
+
+void NodeRuntime::StartServiceWatchdog() {
+  uint64_t usec = 0;
+  // > 0 only when systemd set $WATCHDOG_USEC for this very process (WatchdogSec= in its unit).
+  if (sd_watchdog_enabled(/*unset_environment=*/0, &usec) <= 0 || usec == 0) return;
+  watchdog_usec_ = static_cast<int64_t>(usec);
+  // A timer of the loop: it fires only while the loop turns, so a handler that hangs stops
+  // the pings and systemd kills and restarts the process.
+  AddTimer(static_cast<double>(usec) * 0.5e-6, [this](int64_t) { NotifyService("WATCHDOG=1"); });
+}
+
+void NodeRuntime::NotifyService(const std::string& state) const {
+  if (batch()) return;
+  // Returns 0 without $NOTIFY_SOCKET (not under systemd), < 0 on a send error: neither may
+  // disturb the node, and a missed READY shows in systemd's own status.
+  const int r = sd_notify(/*unset_environment=*/0, state.c_str());
+  if (r < 0) MINENAV_LOG(kDebug) << "sd_notify failed: " << -r;
 }
 
 Bus& NodeRuntime::bus() {
@@ -196,6 +217,15 @@ void NodeRuntime::PublishHeartbeat(int8_t state) {
                   bus_->last_stamp_rejection() + ")";
   }
   Publish(*bus_, options_.heartbeat_channel, hb);
+  // systemctl status shows what the heartbeat says (sent when it changes).
+  static const char* const kStateNames[] = {"STARTING", "OK", "WARN", "ERROR", "STOPPING"};
+  std::string status = "STATUS=";
+  status += hb.state >= 0 && hb.state <= 4 ? kStateNames[hb.state] : "?";
+  if (!hb.message.empty()) status += ": " + hb.message;
+  if (status != last_service_status_) {
+    last_service_status_ = status;
+    NotifyService(status);
+  }
 }
 
 void NodeRuntime::BeginClock(int64_t utime) {
@@ -208,6 +238,8 @@ void NodeRuntime::BeginClock(int64_t utime) {
       t.scheduled = true;
     }
   }
+  // The loop runs from here: a Type=notify unit is started.
+  NotifyService("READY=1\nSTATUS=running");
 }
 
 int64_t NodeRuntime::NextTimerDue() const {
@@ -325,6 +357,7 @@ int NodeRuntime::Run() {
 void NodeRuntime::Shutdown() {
   if (shut_down_ || bus_ == nullptr) return;
   shut_down_ = true;
+  NotifyService("STOPPING=1");
   for (auto& hook : shutdown_hooks_) hook();
   if (options_.heartbeat_period > 0) PublishHeartbeat(heartbeat_t::STOPPING);
   if (log_bus_ != nullptr) {

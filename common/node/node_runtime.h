@@ -12,6 +12,13 @@
 // set to its due time, so a batch run over a log is repeatable bit for bit, and
 // replaying the log with lcm-logplayer through the live process paces timers the same
 // way.
+//
+// Under systemd (a Type=notify unit, fleet/README.md "systemd on a vehicle") a live node
+// speaks the notify protocol through libsystemd: READY=1 when its loop starts, WATCHDOG=1
+// from the loop at half the unit's WatchdogSec (so a loop that hangs is killed and
+// restarted), STATUS= with its heartbeat's state and message, STOPPING=1 at shutdown.
+// Without $NOTIFY_SOCKET (every run outside systemd) none of this does anything; batch
+// runs never notify.
 
 #include <csignal>
 #include <cstdint>
@@ -115,6 +122,9 @@ class NodeRuntime {
 
   void PublishHeartbeat(int8_t state);
   int64_t heartbeats_published() const { return heartbeat_seq_; }
+  // The watchdog period systemd asked for ($WATCHDOG_USEC), 0 when none; the loop sends
+  // WATCHDOG=1 at half of it.
+  int64_t watchdog_usec() const { return watchdog_usec_; }
 
  private:
   struct Timer {
@@ -126,6 +136,9 @@ class NodeRuntime {
   void Register(ConfigSchema& schema);
   void ApplyLogSettings();
   void BeginClock(int64_t utime);
+  // systemd's notify protocol (live only; nothing without $NOTIFY_SOCKET).
+  void StartServiceWatchdog();
+  void NotifyService(const std::string& state) const;
   void FireDueTimers(int64_t now);
   int64_t NextTimerDue() const;
   int RunLive();
@@ -149,6 +162,8 @@ class NodeRuntime {
   std::string status_message_;
   int64_t heartbeat_seq_ = 0;
   int64_t stamps_rejected_at_last_heartbeat_ = 0;
+  int64_t watchdog_usec_ = 0;
+  std::string last_service_status_;
 };
 
 // Runs a process's main body: one-line error and exit code 2 for UsageError and

@@ -1,16 +1,21 @@
 #include "common/node/node_runtime.h"
 
 #include <gtest/gtest.h>
+#include <sys/socket.h>
+#include <sys/un.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <csignal>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <optional>
 
 #include "common/file_io.h"
 #include "common/node/event_log.h"
 #include "common/node/fake_bus.h"
+#include "common/node/fake_runtime.h"
 #include "common/node/log_bus.h"
 #include "minenav/drive_command_t.hpp"
 #include "minenav/heartbeat_t.hpp"
@@ -237,6 +242,139 @@ TEST(NodeRuntimeLive, SigtermStopsRunWithAStoppingHeartbeat) {
   const auto hb = bus.Decoded<heartbeat_t>("HEARTBEAT");
   ASSERT_FALSE(hb.empty());
   EXPECT_EQ(hb.back().state, heartbeat_t::STOPPING);
+}
+
+// systemd's notify protocol. The test owns a datagram socket where systemd would be, and
+// points $NOTIFY_SOCKET (and $WATCHDOG_USEC, as systemd sets it for WatchdogSec=) at it.
+class NotifySocket {
+ public:
+  NotifySocket() : path_(TempPath("notify_" + std::to_string(next_++) + ".sock")) {
+    fd_ = ::socket(AF_UNIX, SOCK_DGRAM | SOCK_NONBLOCK | SOCK_CLOEXEC, 0);
+    sockaddr_un address{};
+    address.sun_family = AF_UNIX;
+    path_.copy(address.sun_path, sizeof(address.sun_path) - 1);
+    ::unlink(path_.c_str());
+    if (fd_ < 0 || ::bind(fd_, reinterpret_cast<const sockaddr*>(&address), sizeof(address)) != 0)
+      throw std::runtime_error("cannot bind " + path_);
+  }
+  ~NotifySocket() {
+    ::close(fd_);
+    ::unlink(path_.c_str());
+  }
+  const std::string& path() const { return path_; }
+  // Every datagram received since the last call.
+  std::vector<std::string> Take() {
+    std::vector<std::string> got;
+    char buffer[4096];
+    for (ssize_t n; (n = ::recv(fd_, buffer, sizeof(buffer), 0)) >= 0;) got.emplace_back(buffer, static_cast<size_t>(n));
+    return got;
+  }
+
+ private:
+  static inline int next_ = 0;
+  std::string path_;
+  int fd_ = -1;
+};
+
+// Environment variables set for one test, then put back as they were.
+class ScopedEnv {
+ public:
+  ScopedEnv(const std::string& name, const char* value) : name_(name) {
+    if (const char* old = std::getenv(name.c_str())) old_ = old;
+    if (value != nullptr) {
+      ::setenv(name.c_str(), value, 1);
+    } else {
+      ::unsetenv(name.c_str());
+    }
+  }
+  ~ScopedEnv() {
+    if (old_) {
+      ::setenv(name_.c_str(), old_->c_str(), 1);
+    } else {
+      ::unsetenv(name_.c_str());
+    }
+  }
+
+ private:
+  std::string name_;
+  std::optional<std::string> old_;
+};
+
+TEST(NodeRuntimeSystemd, ReadyThenWatchdogAtHalfThePeriodFromTheLoopThenStopping) {
+  NotifySocket systemd;
+  ScopedEnv socket("NOTIFY_SOCKET", systemd.path().c_str());
+  ScopedEnv watchdog("WATCHDOG_USEC", "200000");  // WatchdogSec=0.2
+  ScopedEnv watchdog_pid("WATCHDOG_PID", nullptr);
+  ManualClock clock(kT0);
+  FakeRuntime fake(clock, /*heartbeat_period=*/1.0);
+  EXPECT_EQ(fake.runtime().watchdog_usec(), 200'000);
+  fake.runtime().SetStatus(heartbeat_t::OK, "driving");
+  EXPECT_TRUE(systemd.Take().empty()) << "nothing before the loop runs";
+
+  fake.runtime().SpinOnce(0);  // the loop starts: READY, the first heartbeat's STATUS, a ping
+  EXPECT_EQ(systemd.Take(), (std::vector<std::string>{"READY=1\nSTATUS=running", "STATUS=OK: driving", "WATCHDOG=1"}));
+
+  // 1 s of a loop turning every 10 ms: a ping every 0.1 s (half of WatchdogSec), no more.
+  int pings = 0;
+  for (int step = 1; step <= 100; ++step) {
+    clock.Advance(10'000);
+    fake.runtime().SpinOnce(0);
+    for (const std::string& m : systemd.Take()) {
+      if (m == "WATCHDOG=1") ++pings;
+      else EXPECT_EQ(m, "STATUS=OK: driving") << "the status is sent again only when it changes";
+    }
+  }
+  EXPECT_EQ(pings, 10);
+
+  // A loop that stops turning sends nothing: 1 s without a spin, then one ping (missed
+  // periods are skipped, not made up in a burst).
+  clock.Advance(1'000'000);
+  EXPECT_TRUE(systemd.Take().empty());
+  fake.runtime().SpinOnce(0);
+  const std::vector<std::string> after_stall = systemd.Take();
+  EXPECT_EQ(std::count(after_stall.begin(), after_stall.end(), "WATCHDOG=1"), 1);
+
+  fake.runtime().SetStatus(heartbeat_t::WARN, "no odometry");
+  clock.Advance(1'000'000);
+  fake.runtime().SpinOnce(0);
+  const std::vector<std::string> warned = systemd.Take();
+  EXPECT_NE(std::find(warned.begin(), warned.end(), "STATUS=WARN: no odometry"), warned.end());
+
+  fake.runtime().Shutdown();
+  const std::vector<std::string> stopping = systemd.Take();
+  ASSERT_FALSE(stopping.empty());
+  EXPECT_EQ(stopping.front(), "STOPPING=1");
+  EXPECT_EQ(stopping.back(), "STATUS=STOPPING: no odometry");
+}
+
+TEST(NodeRuntimeSystemd, WithoutNotifySocketOrForAnotherPidNothingIsSent) {
+  NotifySocket systemd;
+  {
+    ScopedEnv socket("NOTIFY_SOCKET", nullptr);  // not under systemd
+    ScopedEnv watchdog("WATCHDOG_USEC", "200000");
+    ManualClock clock(kT0);
+    FakeRuntime fake(clock, 1.0);
+    for (int step = 0; step < 50; ++step) {
+      fake.runtime().SpinOnce(0);
+      clock.Advance(20'000);
+    }
+    fake.runtime().Shutdown();
+    EXPECT_TRUE(systemd.Take().empty());
+  }
+  {
+    // $WATCHDOG_USEC meant for another process (a child inherited it): no watchdog timer.
+    ScopedEnv socket("NOTIFY_SOCKET", systemd.path().c_str());
+    ScopedEnv watchdog("WATCHDOG_USEC", "200000");
+    ScopedEnv watchdog_pid("WATCHDOG_PID", std::to_string(::getpid() + 1).c_str());
+    ManualClock clock(kT0);
+    FakeRuntime fake(clock, 0.0);
+    EXPECT_EQ(fake.runtime().watchdog_usec(), 0);
+    for (int step = 0; step < 50; ++step) {
+      fake.runtime().SpinOnce(0);
+      clock.Advance(20'000);
+    }
+    EXPECT_EQ(systemd.Take(), (std::vector<std::string>{"READY=1\nSTATUS=running"}));
+  }
 }
 
 TEST(NodeRuntimeOptions, RegisteredInTheSchema) {

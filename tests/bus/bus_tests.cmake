@@ -84,3 +84,18 @@ if(TARGET contour_mapper AND TARGET path_planner AND TARGET waypoint_driver)
     COMMAND "${MINENAV_PRIVATE_NET}" --port 7800 -- $<TARGET_FILE:planner_live_bus_test>)
   set_tests_properties(bus.planner_on_the_live_contour_map PROPERTIES TIMEOUT 180 LABELS bus)
 endif()
+
+# Issue 15: two hosts, a vehicle and a base station, each a network namespace joined by a
+# veth pair (bus/two_hosts.sh): with ttl=1 a HEARTBEAT crosses, with ttl=0 it stays on its
+# host, and the small real fleet runs split across them under two supervisors
+# (bus/two_hosts_test.sh; ports 7895-7897 are fleet/'s).
+if(TARGET fleet AND TARGET log_tool AND TARGET contour_mapper AND TARGET path_planner)
+  foreach(mode_port IN ITEMS crosses:7895 stays:7896 fleet:7897)
+    string(REPLACE ":" ";" mode_port "${mode_port}")
+    list(GET mode_port 0 mode)
+    list(GET mode_port 1 port)
+    add_test(NAME bus.two_hosts_${mode}
+      COMMAND "${CMAKE_CURRENT_SOURCE_DIR}/bus/two_hosts_test.sh" ${mode} $<TARGET_FILE:fleet> $<TARGET_FILE:log_tool> ${port})
+    set_tests_properties(bus.two_hosts_${mode} PROPERTIES TIMEOUT 60 LABELS bus)
+  endforeach()
+endif()
