@@ -189,9 +189,9 @@ bool Coordinator::PoseFresh(int64_t now) const {
 
 // ---------------------------------------------------------------------------------- inputs
 
-void Coordinator::OnHeartbeat(const HeartbeatInfo& hb, int64_t now) {
-  HeartbeatInfo h = hb;
-  h.utime = now;  // when it arrived here: ages are measured on this clock
+void Coordinator::OnHeartbeat(const HeartbeatSample& hb, int64_t now) {
+  HeartbeatSample h = hb;
+  h.received = now;  // ages are measured on this clock
   watch_.OnHeartbeat(h);
 }
 

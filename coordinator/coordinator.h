@@ -169,7 +169,7 @@ class Coordinator {
   // first_id: ids of requests and tasks count up from it (unique per run: e.g. the clock).
   Coordinator(CoordinatorOptions options, int64_t first_id);
 
-  void OnHeartbeat(const HeartbeatInfo& hb, int64_t now);
+  void OnHeartbeat(const HeartbeatSample& hb, int64_t now);
   void OnPose(const Pose2& pose, int64_t utime, int64_t now);
   void OnTaskPlan(const TaskPlan& plan, int64_t now);
   void OnPath(const PathAnswer& path, int64_t now);

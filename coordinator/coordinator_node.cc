@@ -11,6 +11,7 @@
 #include "common/log.h"
 #include "common/node/bus.h"
 #include "common/node/conversions.h"
+#include "common/node/heartbeat_conversion.h"
 #include "minenav/coordinator_command_t.hpp"
 #include "minenav/cutter_command_t.hpp"
 #include "minenav/cutter_state_t.hpp"
@@ -129,14 +130,8 @@ CoordinatorNode::CoordinatorNode(NodeRuntime& runtime, CoordinatorNodeOptions op
       coordinator_(Validated(options_.mission), runtime.NowUtime()) {
   Bus& bus = runtime_.bus();
   Subscribe<heartbeat_t>(bus, options_.heartbeat_in_channel, [this](const heartbeat_t& m) {
-    if (m.state < heartbeat_t::STARTING || m.state > heartbeat_t::STOPPING)
-      throw InputError("heartbeat of '" + m.process + "': unknown state " + std::to_string(m.state));
-    HeartbeatInfo hb;
-    hb.process = m.process;
-    hb.instance = m.instance;
-    hb.state = static_cast<HeartbeatState>(m.state);
-    hb.message = m.message;
-    coordinator_.OnHeartbeat(hb, runtime_.NowUtime());
+    const int64_t now = runtime_.NowUtime();
+    coordinator_.OnHeartbeat(HeartbeatSampleFromLcm(m, now), now);
   });
   Subscribe<pose_estimate_t>(bus, options_.pose_channel, [this](const pose_estimate_t& m) {
     const PoseEstimate e = FromLcm(m);

@@ -96,7 +96,7 @@ struct FakeFleet {
     if (now % 1'000'000 != 0) return;
     for (const std::string p : {"mapper", "planner", "tracker", "tasks", "cutter"}) {
       if (dead.count(p)) continue;
-      HeartbeatInfo hb;
+      HeartbeatSample hb;
       hb.process = p;
       hb.state = HeartbeatState::kOk;
       c.OnHeartbeat(hb, now);

@@ -6,44 +6,30 @@
 
 namespace minenav {
 
-const char* ToString(HeartbeatState s) {
-  switch (s) {
-    case HeartbeatState::kStarting: return "STARTING";
-    case HeartbeatState::kOk: return "OK";
-    case HeartbeatState::kWarn: return "WARN";
-    case HeartbeatState::kError: return "ERROR";
-    case HeartbeatState::kStopping: return "STOPPING";
-  }
-  return "UNKNOWN";
-}
-
 HeartbeatWatch::HeartbeatWatch(std::vector<std::string> required, double timeout_s)
     : required_(std::move(required)), timeout_us_(std::llround(timeout_s * 1e6)) {}
 
-void HeartbeatWatch::OnHeartbeat(const HeartbeatInfo& hb) {
-  latest_[hb.process] = hb;
-  if (!hb.instance.empty()) latest_[hb.process + "/" + hb.instance] = hb;
-}
-
-double HeartbeatWatch::Age(const std::string& process, int64_t now) const {
-  const auto it = latest_.find(process);
-  return it == latest_.end() ? -1.0 : static_cast<double>(now - it->second.utime) * 1e-6;
+const HeartbeatRecord* HeartbeatWatch::Latest(const std::string& process) const {
+  const size_t slash = process.find('/');
+  if (slash != std::string::npos) return monitor_.Find(process.substr(0, slash), process.substr(slash + 1));
+  const HeartbeatRecord* best = nullptr;
+  for (const HeartbeatRecord* r : monitor_.All())
+    if (r->last.process == process && (!best || r->last.received > best->last.received)) best = r;
+  return best;
 }
 
 std::string HeartbeatWatch::Why(const std::string& process, int64_t now) const {
-  const auto it = latest_.find(process);
-  if (it == latest_.end()) return "never seen";
-  const HeartbeatInfo& hb = it->second;
-  if (now - hb.utime > timeout_us_) {
+  const HeartbeatRecord* r = Latest(process);
+  if (!r) return "never seen";
+  const HeartbeatSample& hb = r->last;
+  if (now - hb.received > timeout_us_) {
     char buf[64];
-    std::snprintf(buf, sizeof(buf), "no heartbeat for %.1f s", static_cast<double>(now - hb.utime) * 1e-6);
+    std::snprintf(buf, sizeof(buf), "no heartbeat for %.1f s", r->age_s(now));
     return buf;
   }
   if (hb.state == HeartbeatState::kOk || hb.state == HeartbeatState::kWarn) return "";
   return std::string(ToString(hb.state)) + (hb.message.empty() ? "" : " (" + hb.message + ")");
 }
-
-bool HeartbeatWatch::Ready(const std::string& process, int64_t now) const { return Why(process, now).empty(); }
 
 std::vector<std::string> HeartbeatWatch::NotReady(int64_t now) const {
   std::vector<std::string> out;

@@ -1,51 +1,43 @@
 #pragma once
-// Which processes of the fleet are alive (thesis 6.1: TCA's monitors; here HEARTBEAT). A
-// process is ready when its latest heartbeat is OK or WARN (alive and working; WARN says
-// something is wrong that the process handles itself, e.g. the tracker stopped on a stale
-// pose) and came less than `timeout` ago; STARTING, ERROR, STOPPING or silence is not ready.
-// Plain C++: the caller passes the clock.
+// Which required processes of the fleet are ready (thesis 6.1: TCA's monitors; here HEARTBEAT),
+// on the fleet's one record of heartbeats (common/heartbeat_monitor.h, which the supervisor
+// uses too). A process is ready when its latest heartbeat is OK or WARN (alive and working;
+// WARN says something is wrong that the process handles itself, e.g. the tracker stopped on a
+// stale pose) and arrived less than `timeout` ago; STARTING, ERROR, STOPPING or silence is not
+// ready. Plain C++: the caller passes the clock.
 
 #include <cstdint>
-#include <map>
 #include <string>
 #include <vector>
 
+#include "common/heartbeat_monitor.h"
+
 namespace minenav {
-
-// heartbeat_t's state constants.
-enum class HeartbeatState : int8_t { kStarting = 0, kOk = 1, kWarn = 2, kError = 3, kStopping = 4 };
-const char* ToString(HeartbeatState s);
-
-struct HeartbeatInfo {
-  std::string process;   // heartbeat_t.process
-  std::string instance;  // "" if one
-  HeartbeatState state = HeartbeatState::kOk;
-  std::string message;
-  int64_t utime = 0;     // us, when it was received
-};
 
 class HeartbeatWatch {
  public:
-  // required: process names ("path_tracker"), or "name/instance" for one copy of several.
+  // required: process names ("path_tracker": any instance), or "name/instance" for one copy.
   HeartbeatWatch(std::vector<std::string> required, double timeout_s);
 
-  void OnHeartbeat(const HeartbeatInfo& hb);
+  // A heartbeat with its receive time (sample.received, us on this clock).
+  void OnHeartbeat(const HeartbeatSample& sample) { monitor_.Add(sample); }
 
-  bool Ready(const std::string& process, int64_t now) const;
+  bool Ready(const std::string& process, int64_t now) const { return Why(process, now).empty(); }
   bool AllReady(int64_t now) const { return NotReady(now).empty(); }
   // The required processes that are not ready, with why, in the order required:
   // "path_tracker: no heartbeat for 3.2 s", "cutter: never seen", "contour_mapper: ERROR (disk full)".
   std::vector<std::string> NotReady(int64_t now) const;
-  // Seconds since the process's last heartbeat, or -1 if never seen.
-  double Age(const std::string& process, int64_t now) const;
   const std::vector<std::string>& required() const { return required_; }
+  const HeartbeatMonitor& monitor() const { return monitor_; }
 
  private:
+  // The freshest record of `process` ("name" or "name/instance"), or null.
+  const HeartbeatRecord* Latest(const std::string& process) const;
   std::string Why(const std::string& process, int64_t now) const;  // "" when ready
 
   std::vector<std::string> required_;
   int64_t timeout_us_;
-  std::map<std::string, HeartbeatInfo> latest_;  // by name and by name/instance
+  HeartbeatMonitor monitor_;
 };
 
 }  // namespace minenav

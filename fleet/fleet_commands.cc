@@ -15,7 +15,7 @@
 #include "common/node/lcm_bus.h"
 #include "common/node/node_runtime.h"
 #include "fleet/child_launcher.h"
-#include "fleet/heartbeat_conversion.h"
+#include "common/node/heartbeat_conversion.h"
 #include "fleet/status_table.h"
 #include "fleet/supervisor_node.h"
 #include "fleet/systemd_units.h"

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "fleet/heartbeat_monitor.h"
+#include "common/heartbeat_monitor.h"
 #include "fleet/supervisor.h"
 
 namespace minenav {

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "fleet/fleet_file.h"
-#include "fleet/heartbeat_monitor.h"
+#include "common/heartbeat_monitor.h"
 #include "fleet/restart_policy.h"
 
 namespace minenav {

@@ -12,7 +12,7 @@
 #include "common/log.h"
 #include "common/node/bus.h"
 #include "fleet/child_launcher.h"
-#include "fleet/heartbeat_conversion.h"
+#include "common/node/heartbeat_conversion.h"
 #include "fleet/status_table.h"
 #include "minenav/heartbeat_t.hpp"
 

@@ -2,7 +2,7 @@
 
 #include <gtest/gtest.h>
 
-#include "fleet/heartbeat_monitor.h"
+#include "common/heartbeat_monitor.h"
 
 namespace minenav {
 namespace {

@@ -1,4 +1,4 @@
-#include "fleet/heartbeat_conversion.h"
+#include "common/node/heartbeat_conversion.h"
 
 #include <string>
 
@@ -11,7 +11,7 @@ static_assert(static_cast<int>(HeartbeatState::kStarting) == heartbeat_t::STARTI
                   static_cast<int>(HeartbeatState::kWarn) == heartbeat_t::WARN &&
                   static_cast<int>(HeartbeatState::kError) == heartbeat_t::ERROR &&
                   static_cast<int>(HeartbeatState::kStopping) == heartbeat_t::STOPPING,
-              "fleet/heartbeat_monitor.h mirrors heartbeat_t's states");
+              "common/heartbeat_monitor.h mirrors heartbeat_t's states");
 
 HeartbeatSample HeartbeatSampleFromLcm(const heartbeat_t& message, int64_t received) {
   if (message.state < heartbeat_t::STARTING || message.state > heartbeat_t::STOPPING)

@@ -1,4 +1,4 @@
-#include "fleet/heartbeat_monitor.h"
+#include "common/heartbeat_monitor.h"
 
 namespace minenav {
 

@@ -3,7 +3,7 @@
 
 #include <cstdint>
 
-#include "fleet/heartbeat_monitor.h"
+#include "common/heartbeat_monitor.h"
 #include "minenav/heartbeat_t.hpp"
 
 namespace minenav {
