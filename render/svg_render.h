@@ -23,6 +23,7 @@ struct SvgLineLayer {
   std::string label;   // legend text; empty = not in the legend
   std::string color;   // any SVG colour
   double width_px = 1.5;
+  bool dashed = false;
   std::vector<Segment> segments;
   std::vector<SvgPolyline> polylines;
 };
@@ -63,6 +64,19 @@ struct SvgArea {
   std::vector<std::vector<Eigen::Vector2d>> polygons;
 };
 
+// Markers at places (scan stations, cut targets, where a map is worst): a shape, an optional
+// heading tick, and an optional text beside each.
+struct SvgMarkers {
+  enum class Shape { kCircle, kSquare, kDiamond, kCross };
+  std::string label;
+  std::string color;
+  Shape shape = Shape::kCircle;
+  double size_px = 5.0;        // half the shape's width
+  bool heading_ticks = false;  // a tick from the centre along each pose's heading
+  std::vector<Pose2> poses;
+  std::vector<std::string> texts;  // texts[i] is written beside poses[i]; may be shorter
+};
+
 struct SvgScene {
   std::string title;
   std::vector<std::string> notes;  // extra lines under the title
@@ -70,6 +84,7 @@ struct SvgScene {
   std::vector<SvgLineLayer> lines;         // then walls and maps over the points
   std::vector<SvgLinks> links;
   std::vector<SvgTrajectory> trajectories; // on top
+  std::vector<SvgMarkers> markers;         // over the trajectories
   std::vector<SvgArea> areas;              // under everything
 };
 
