@@ -22,6 +22,9 @@ std::string Fixed(double v, int digits = 2) {
   return buf;
 }
 
+// Most cells of the explored-area grid (a 400 m x 400 m section at 0.2 m).
+constexpr double kMaxAreaCells = 4e6;
+
 double Seconds(int64_t from, int64_t to) { return static_cast<double>(to - from) * 1e-6; }
 
 bool IsEnd(MissionStatusState s) {
@@ -248,8 +251,13 @@ MissionFigures EvaluateMission(const MissionInputs& in, const MissionEvaluationO
   for (const Segment& s : space.walls) grow(s.a), grow(s.b);
   if (!(lo.x() <= hi.x())) lo = hi = Eigen::Vector2d::Zero();
   const Eigen::Vector2d margin = Eigen::Vector2d::Constant(o.area_margin);
-  f.grid = MakeAreaGrid(in.final_world, [&](const Eigen::Vector2d& p) { return known.Contains(p); }, lo - margin,
-                        hi + margin, o.area_cell);
+  lo -= margin;
+  hi += margin;
+  // A section far larger than a mine (a stray contour kilometres out) gets coarser cells, so
+  // the grid stays within kMaxAreaCells; the cell used is in the figures.
+  double cell = o.area_cell;
+  while ((hi.x() - lo.x()) / cell * ((hi.y() - lo.y()) / cell) > kMaxAreaCells) cell *= 2.0;
+  f.grid = MakeAreaGrid(in.final_world, [&](const Eigen::Vector2d& p) { return known.Contains(p); }, lo, hi, cell);
   f.area = MeasureArea(f.grid);
 
   f.map.deviation = mapper::ContourDeviation(in.map, in.final_world, o.deviation_step);

@@ -22,7 +22,7 @@ namespace minenav {
 class OptionScope;
 
 struct MissionEvaluationOptions {
-  double area_cell = 0.2;            // m, cell of the explored-area grid
+  double area_cell = 0.2;            // m, cell of the explored-area grid (doubled until the grid has at most 4e6 cells)
   double area_margin = 1.0;          // m, grid margin around the true world and the map
   double deviation_step = 0.05;      // m, contour sampling step of the map accuracy
   int64_t max_truth_gap_us = 500000; // us: a pose is compared with the truth interpolated between readings at most twice this apart

@@ -52,23 +52,22 @@ SvgScene MissionScene(const MissionInputs& in, const MissionFigures& f, const Mi
     scene.areas.push_back({"shown free, not free", "#d62728", 0.6, CellRuns(f.grid, false, true)});
   }
 
-  SvgLineLayer initial{"true walls at the start", "#c8c8c8", 4.0, false, in.initial_world, {}};
-  SvgLineLayer final_walls{"true walls at the end", "#333333", 1.2, false, in.final_world, {}};
-  SvgLineLayer map{"final contour map", "#1f77b4", 1.5, false, {}, {}};
+  SvgLineLayer initial{"true walls at the start", "#c8c8c8", 4.0, in.initial_world, {}};
+  SvgLineLayer final_walls{"true walls at the end", "#333333", 1.2, in.final_world, {}};
+  SvgLineLayer map{"final contour map", "#1f77b4", 1.5, {}, {}};
   for (const auto& [id, c] : in.map.contours()) map.polylines.push_back({c.points, c.closed});
   scene.lines = {initial, final_walls, map};
-  SvgLineLayer faces{"cut faces (as planned)", "#ff7f0e", 3.0, false, {}, {}};
-  SvgLineLayer requested{"requested depth of each cut", "#ff7f0e", 1.5, true, {}, {}};
+  SvgLineLayer faces{"cut faces (as planned)", "#ff7f0e", 3.0, {}, {}};
   for (const CutFigures& c : f.cuts) {
     if (!c.face) continue;
     faces.segments.push_back(*c.face);
+    // The face where the request would put it, dashed (a trajectory: line layers are solid).
     const Eigen::Vector2d d = c.requested_m * Eigen::Vector2d(std::cos(c.target.theta), std::sin(c.target.theta));
-    requested.segments.push_back(Segment(c.face->a + d, c.face->b + d));
+    const Eigen::Vector2d a = c.face->a + d, b = c.face->b + d;
+    scene.trajectories.push_back({scene.trajectories.empty() ? "requested depth of each cut" : "", "#ff7f0e", 1.5,
+                                  true, false, {Pose2(a.x(), a.y(), 0.0), Pose2(b.x(), b.y(), 0.0)}});
   }
-  if (!faces.segments.empty()) {
-    scene.lines.push_back(faces);
-    scene.lines.push_back(requested);
-  }
+  if (!faces.segments.empty()) scene.lines.push_back(faces);
 
   // The paths the tracker was given; without DRIVE_PATH (a survey without the coordinator),
   // the planner's answers.

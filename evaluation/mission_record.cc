@@ -1,6 +1,7 @@
 #include "evaluation/mission_record.h"
 
 #include <cmath>
+#include <limits>
 #include <nlohmann/json.hpp>
 
 namespace minenav {
@@ -41,7 +42,9 @@ class Reader {
     if (!obj.contains(key)) return 0;
     const json& j = obj.at(key);
     if (!j.is_number_integer()) Fail(key, "expected an integer");
-    return j.get<int>();
+    const int64_t v = j.get<int64_t>();
+    if (v < 0 || v > std::numeric_limits<int>::max()) Fail(key, "out of range");
+    return static_cast<int>(v);
   }
   std::string Text(const json& obj, const char* key, const std::string& where = "") const {
     if (!obj.contains(key)) return "";

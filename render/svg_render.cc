@@ -183,8 +183,7 @@ std::string RenderSvg(const SvgScene& scene, const SvgRenderOptions& options) {
 
   for (const auto& l : scene.lines) {
     os << "<g stroke=\"" << l.color << "\" stroke-width=\"" << l.width_px
-       << "\" fill=\"none\" stroke-linecap=\"round\" stroke-linejoin=\"round\""
-       << (l.dashed ? " stroke-dasharray=\"6 4\"" : "") << ">\n";
+       << "\" fill=\"none\" stroke-linecap=\"round\" stroke-linejoin=\"round\">\n";
     if (!l.segments.empty()) {
       os << "<path d=\"";
       for (const auto& s : l.segments)
@@ -283,7 +282,7 @@ std::string RenderSvg(const SvgScene& scene, const SvgRenderOptions& options) {
     ly += 22.0;
   }
   for (const auto& l : scene.lines)
-    if (!l.label.empty()) entry_line(l.label, l.color, l.dashed, std::max(l.width_px, 2.0));
+    if (!l.label.empty()) entry_line(l.label, l.color, false, std::max(l.width_px, 2.0));
   for (const auto& l : scene.points) {
     if (l.label.empty()) continue;
     os << "<circle cx=\"" << lx + 15 << "\" cy=\"" << ly - 5 << "\" r=\"3\" fill=\"" << l.color

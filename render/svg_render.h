@@ -23,7 +23,6 @@ struct SvgLineLayer {
   std::string label;   // legend text; empty = not in the legend
   std::string color;   // any SVG colour
   double width_px = 1.5;
-  bool dashed = false;
   std::vector<Segment> segments;
   std::vector<SvgPolyline> polylines;
 };
@@ -84,8 +83,8 @@ struct SvgScene {
   std::vector<SvgLineLayer> lines;         // then walls and maps over the points
   std::vector<SvgLinks> links;
   std::vector<SvgTrajectory> trajectories; // on top
-  std::vector<SvgMarkers> markers;         // over the trajectories
   std::vector<SvgArea> areas;              // under everything
+  std::vector<SvgMarkers> markers;         // over the trajectories
 };
 
 struct SvgRenderOptions {

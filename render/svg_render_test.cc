@@ -1,5 +1,5 @@
-// The SVG writer's markers and dashed line layers (the mission picture's stations, cut targets
-// and requested faces): each shape drawn where it belongs, in the legend, and inside the view.
+// The SVG writer's markers (the mission picture's stations, cut targets, the start, where a map
+// is worst): each shape drawn, its text beside it, in the legend, and inside the view.
 
 #include "render/svg_render.h"
 
@@ -18,8 +18,7 @@ int Count(const std::string& s, const std::string& needle) {
 
 TEST(SvgRender, MarkersOfEachShapeWithTextsAndLegend) {
   SvgScene scene;
-  scene.lines.push_back({"walls", "#333", 1.5, false, {Segment({0, 0}, {10, 0})}, {}});
-  scene.lines.push_back({"requested face", "#f80", 1.5, true, {Segment({0, 5}, {10, 5})}, {}});
+  scene.lines.push_back({"walls", "#333", 1.5, {Segment({0, 0}, {10, 0})}, {}});
   SvgMarkers stations{"stations", "#00f", SvgMarkers::Shape::kCircle, 4.0, true,
                       {Pose2(1, 1, 0), Pose2(2, 2, 1)}, {"1", "2"}};
   SvgMarkers start{"start", "#000", SvgMarkers::Shape::kSquare, 5.0, false, {Pose2(3, 3, 0)}, {}};
@@ -31,10 +30,8 @@ TEST(SvgRender, MarkersOfEachShapeWithTextsAndLegend) {
   EXPECT_EQ(Count(svg, "<circle"), 2 + 1);  // two stations, one in the legend
   EXPECT_EQ(Count(svg, "<rect x="), 1 + 1 + 2);  // the start, its legend entry, the frame and the clip area
   for (const std::string text : {">1</text>", ">2</text>", ">box</text>", ">stations</text>", ">start</text>",
-                                 ">targets</text>", ">worst</text>", ">requested face</text>"})
+                                 ">targets</text>", ">worst</text>", ">walls</text>"})
     EXPECT_NE(svg.find(text), std::string::npos) << text;
-  // The dashed line layer and its legend entry.
-  EXPECT_EQ(Count(svg, "stroke-dasharray=\"6 4\""), 2);
   // The cross at (30, 20) is inside the drawing: the view grew to hold it.
   const std::regex frame(R"re(<rect x="([0-9.]+)" y="([0-9.]+)" width="([0-9.]+)" height="([0-9.]+)" fill="none")re");
   std::smatch m;
