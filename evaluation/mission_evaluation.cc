@@ -27,38 +27,18 @@ constexpr double kMaxAreaCells = 4e6;
 
 double Seconds(int64_t from, int64_t to) { return static_cast<double>(to - from) * 1e-6; }
 
-bool IsEnd(MissionStatusState s) {
-  return s == MissionStatusState::kDone || s == MissionStatusState::kFailed || s == MissionStatusState::kAborted;
+bool IsEnd(MissionState s) {
+  return s == MissionState::kDone || s == MissionState::kFailed || s == MissionState::kAborted;
 }
 
-const char* ToString(MissionNodeState s) {
+// task_status_t's state names (the coordinator has none for TaskState).
+const char* TaskStateName(TaskState s) {
   switch (s) {
-    case MissionNodeState::kIdle: return "idle";
-    case MissionNodeState::kRunning: return "running";
-    case MissionNodeState::kSuccess: return "success";
-    case MissionNodeState::kFailure: return "failure";
-  }
-  return "unknown";
-}
-
-const char* ToString(TaskStatusState s) {
-  switch (s) {
-    case TaskStatusState::kPending: return "PENDING";
-    case TaskStatusState::kActive: return "ACTIVE";
-    case TaskStatusState::kDone: return "DONE";
-    case TaskStatusState::kFailed: return "FAILED";
-    case TaskStatusState::kCanceled: return "CANCELED";
-  }
-  return "unknown";
-}
-
-const char* ToString(HeartbeatState s) {
-  switch (s) {
-    case HeartbeatState::kStarting: return "STARTING";
-    case HeartbeatState::kOk: return "OK";
-    case HeartbeatState::kWarn: return "WARN";
-    case HeartbeatState::kError: return "ERROR";
-    case HeartbeatState::kStopping: return "STOPPING";
+    case TaskState::kPending: return "PENDING";
+    case TaskState::kActive: return "ACTIVE";
+    case TaskState::kDone: return "DONE";
+    case TaskState::kFailed: return "FAILED";
+    case TaskState::kCanceled: return "CANCELED";
   }
   return "unknown";
 }
@@ -94,14 +74,14 @@ TimeFigures MissionTimes(const MissionRecord& log) {
   t.log_s = log.events > 0 ? Seconds(log.first_utime, log.last_utime) : 0.0;
   std::optional<int64_t> start, end, explore_start, explore_end;
   for (const MissionStatusLine& s : log.mission_status) {
-    if (!start && s.state != MissionStatusState::kIdle) start = s.utime;
+    if (!start && s.state != MissionState::kIdle) start = s.utime;
     if (start && !end && IsEnd(s.state)) end = s.utime;
     for (const MissionNodeLine& n : s.nodes) {
       if (n.name.rfind("explore", 0) != 0) continue;
       if (t.exploration_result.empty()) t.exploration_result = "unfinished";
-      if (!explore_start && n.state == MissionNodeState::kRunning) explore_start = s.utime;
+      if (!explore_start && n.state == BtStatus::kRunning) explore_start = s.utime;
       if (explore_start && !explore_end &&
-          (n.state == MissionNodeState::kSuccess || n.state == MissionNodeState::kFailure)) {
+          (n.state == BtStatus::kSuccess || n.state == BtStatus::kFailure)) {
         explore_end = s.utime;
         t.exploration_result = ToString(n.state);
       }
@@ -198,17 +178,18 @@ RefusalFigures MeasureRefusals(const MissionRecord& log, const MissionReport* mi
       r.path_refusals.push_back({a.utime, a.request_id, a.status});
   std::set<std::tuple<int64_t, int, std::string>> tasks;
   for (const TaskStatusLine& t : log.task_status)
-    if ((t.state == TaskStatusState::kFailed || t.state == TaskStatusState::kCanceled) &&
+    if ((t.state == TaskState::kFailed || t.state == TaskState::kCanceled) &&
         tasks.insert({t.task_id, static_cast<int>(t.state), t.message}).second)
       r.task_failures.push_back(t);
   std::map<std::pair<std::string, int>, size_t> problem;  // (process, state) -> index
-  for (const HeartbeatLine& h : log.heartbeats) {
+  for (const HeartbeatInfo& h : log.heartbeats) {
     if (h.state != HeartbeatState::kWarn && h.state != HeartbeatState::kError) continue;
-    const auto key = std::make_pair(h.process, static_cast<int>(h.state));
+    const std::string process = h.instance.empty() ? h.process : h.process + "/" + h.instance;
+    const auto key = std::make_pair(process, static_cast<int>(h.state));
     const auto it = problem.find(key);
     if (it == problem.end()) {
       problem[key] = r.heartbeat_problems.size();
-      r.heartbeat_problems.push_back({h.process, h.state, h.utime, h.message, 1});
+      r.heartbeat_problems.push_back({process, h.state, h.utime, h.message, 1});
     } else {
       ++r.heartbeat_problems[it->second].count;
     }
@@ -275,6 +256,7 @@ MissionFigures EvaluateMission(const MissionInputs& in, const MissionEvaluationO
   if (!in.log.scan_stations.empty()) {
     f.stations = in.log.scan_stations;
     f.stations_source = "TASK_PLAN scan stations";
+    f.log_stations = true;
   } else {
     f.stations = StandingPoses(in.log.truth, std::llround(o.standing_time * 1e6), o.standing_motion);
     f.stations_source = "where the vehicle stood for " + Fixed(o.standing_time, 1) + " s or more";
@@ -394,7 +376,7 @@ std::string MissionFiguresToJson(const MissionInputs& in, const MissionFigures& 
     path_refusals.push_back({{"utime", x.utime}, {"request_id", x.request_id}, {"status", x.status}});
   for (const TaskStatusLine& x : r.task_failures)
     task_failures.push_back(
-        {{"utime", x.utime}, {"task_id", x.task_id}, {"state", ToString(x.state)}, {"message", x.message}});
+        {{"utime", x.utime}, {"task_id", x.task_id}, {"state", TaskStateName(x.state)}, {"message", x.message}});
   for (const HeartbeatProblem& x : r.heartbeat_problems)
     heartbeat.push_back({{"process", x.process},
                          {"state", ToString(x.state)},
@@ -557,7 +539,7 @@ std::string MissionReportMarkdown(const MissionInputs& in, const MissionFigures&
   list("Paths refused by the planner", lines);
   lines.clear();
   for (const TaskStatusLine& x : r.task_failures)
-    lines.push_back("task " + std::to_string(x.task_id) + " " + ToString(x.state) + ": " + x.message);
+    lines.push_back("task " + std::to_string(x.task_id) + " " + TaskStateName(x.state) + ": " + x.message);
   list("Tasks failed or canceled", lines);
   lines.clear();
   for (const HeartbeatProblem& x : r.heartbeat_problems)

@@ -132,7 +132,8 @@ struct MissionFigures {
   PlanningFigures planning;
   RefusalFigures refusals;
   std::vector<Pose2> stations;
-  std::string stations_source;  // "TASK_PLAN scan stations" or "where the vehicle stood"
+  std::string stations_source;  // "TASK_PLAN scan stations" or "where the vehicle stood ..."
+  bool log_stations = false;    // the stations are TASK_PLAN's
   bool have_mission = false;
 };
 

@@ -304,11 +304,11 @@ TEST(PlannerStatus, PlanningFiguresCountEachAnswerOnceAndTheLinesTheyCannotRead)
 
 // ---------------------------------------------------------------------------------------
 
-MissionStatusLine Status(double t, MissionStatusState s, MissionNodeState explore) {
+MissionStatusLine Status(double t, MissionState s, BtStatus explore) {
   MissionStatusLine l;
   l.utime = static_cast<int64_t>(t * 1e6);
   l.state = s;
-  l.nodes = {{"mission m", MissionNodeState::kRunning}, {"wait for the fleet to be ready", MissionNodeState::kSuccess},
+  l.nodes = {{"mission m", BtStatus::kRunning}, {"wait for the fleet to be ready", BtStatus::kSuccess},
              {"explore the section", explore}};
   return l;
 }
@@ -318,13 +318,13 @@ TEST(MissionTimes, ExplorationAndMissionFromTheStatusLines) {
   log.events = 5;
   log.first_utime = 0;
   log.last_utime = 90000000;
-  log.mission_status = {Status(0, MissionStatusState::kIdle, MissionNodeState::kIdle),
-                        Status(1, MissionStatusState::kWaiting, MissionNodeState::kIdle),
-                        Status(2, MissionStatusState::kRunning, MissionNodeState::kRunning),
-                        Status(30, MissionStatusState::kPaused, MissionNodeState::kRunning),
-                        Status(50, MissionStatusState::kRunning, MissionNodeState::kSuccess),
-                        Status(80, MissionStatusState::kDone, MissionNodeState::kSuccess),
-                        Status(85, MissionStatusState::kDone, MissionNodeState::kSuccess)};
+  log.mission_status = {Status(0, MissionState::kIdle, BtStatus::kIdle),
+                        Status(1, MissionState::kWaiting, BtStatus::kIdle),
+                        Status(2, MissionState::kRunning, BtStatus::kRunning),
+                        Status(30, MissionState::kPaused, BtStatus::kRunning),
+                        Status(50, MissionState::kRunning, BtStatus::kSuccess),
+                        Status(80, MissionState::kDone, BtStatus::kSuccess),
+                        Status(85, MissionState::kDone, BtStatus::kSuccess)};
   const TimeFigures t = MissionTimes(log);
   EXPECT_DOUBLE_EQ(t.log_s, 90.0);
   ASSERT_TRUE(t.mission_s);
@@ -332,32 +332,32 @@ TEST(MissionTimes, ExplorationAndMissionFromTheStatusLines) {
   ASSERT_TRUE(t.exploration_s);
   EXPECT_DOUBLE_EQ(*t.exploration_s, 48.0);
   EXPECT_EQ(t.exploration_result, "success");
-  EXPECT_EQ(t.final_state, "done");
+  EXPECT_EQ(t.final_state, "DONE");
   // Cut short: no end, the exploration unfinished.
   log.mission_status.resize(4);
   const TimeFigures u = MissionTimes(log);
   EXPECT_FALSE(u.mission_s);
   EXPECT_FALSE(u.exploration_s);
   EXPECT_EQ(u.exploration_result, "unfinished");
-  EXPECT_EQ(u.final_state, "paused");
+  EXPECT_EQ(u.final_state, "PAUSED");
   EXPECT_FALSE(MissionTimes(MissionRecord()).mission_s);
 }
 
 TEST(Refusals, EachProblemOnceWithItsFirstLine) {
   MissionRecord log;
   auto hb = [&](double t, const std::string& p, HeartbeatState s, const std::string& m) {
-    log.heartbeats.push_back({static_cast<int64_t>(t * 1e6), p, s, m});
+    log.heartbeats.push_back({p, "", s, m, static_cast<int64_t>(t * 1e6)});
   };
   hb(1, "contour_mapper", HeartbeatState::kOk, "fine");
   hb(2, "contour_mapper", HeartbeatState::kWarn, "3 scans refused");
   hb(3, "contour_mapper", HeartbeatState::kWarn, "4 scans refused");
   hb(4, "path_planner", HeartbeatState::kError, "worker stuck");
   hb(5, "contour_mapper", HeartbeatState::kOk, "fine");
-  log.task_status = {{1, 5, TaskStatusState::kActive, ""},
-                     {2, 5, TaskStatusState::kFailed, "blocked ahead"},
-                     {3, 5, TaskStatusState::kFailed, "blocked ahead"},
-                     {4, 6, TaskStatusState::kCanceled, "canceled by the coordinator"},
-                     {5, 7, TaskStatusState::kDone, "arrived"}};
+  log.task_status = {{1, 5, TaskState::kActive, ""},
+                     {2, 5, TaskState::kFailed, "blocked ahead"},
+                     {3, 5, TaskState::kFailed, "blocked ahead"},
+                     {4, 6, TaskState::kCanceled, "canceled by the coordinator"},
+                     {5, 7, TaskState::kDone, "arrived"}};
   LoggedPath refused;
   refused.request_id = 9;
   refused.status = "no_path: boxed in";
@@ -374,7 +374,7 @@ TEST(Refusals, EachProblemOnceWithItsFirstLine) {
   EXPECT_EQ(r.heartbeat_problems[0].first_message, "3 scans refused");
   EXPECT_EQ(r.heartbeat_problems[1].state, HeartbeatState::kError);
   ASSERT_EQ(r.task_failures.size(), 2u);
-  EXPECT_EQ(r.task_failures[1].state, TaskStatusState::kCanceled);
+  EXPECT_EQ(r.task_failures[1].state, TaskState::kCanceled);
   ASSERT_EQ(r.path_refusals.size(), 1u);
   EXPECT_EQ(r.path_refusals[0].request_id, 9);
   EXPECT_EQ(r.drive_path_cancels, 1);
@@ -496,7 +496,7 @@ TEST(Picture, TheSceneHasEveryLayerAndTheHeadline) {
   const std::string svg = RenderSvg(scene);
   for (const std::string label : {"true walls at the start", "true walls at the end", "final contour map",
                                   "planned paths (DRIVE_PATH)", "driven (SIM_TRUTH)", "estimated (POSE)",
-                                  "cut faces (as planned)", "scan stations", "box_cut 0.80 m", "MINENAV mission: m (done)"})
+                                  "cut faces (as planned)", "stops of the vehicle (no TASK_PLAN)", "box_cut 0.80 m", "MINENAV mission: m (done)"})
     EXPECT_NE(svg.find(label), std::string::npos) << label;
   const std::string md = MissionReportMarkdown(in, f, o);
   EXPECT_NE(md.find("| 0 box_cut | 0.80 m | 0.800 m"), std::string::npos) << md;

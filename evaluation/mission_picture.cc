@@ -79,9 +79,8 @@ SvgScene MissionScene(const MissionInputs& in, const MissionFigures& f, const Mi
     if (!p.feasible || p.path.pieces.empty() || !drawn.insert({p.request_id, p.status}).second) continue;
     SvgTrajectory t;
     t.label = first ? (drive ? "planned paths (DRIVE_PATH)" : "planned paths (PATH)") : "";
-    t.color = "#17becf";
-    t.width_px = 2.0;
-    t.dashed = true;
+    t.color = "#9edae5";  // a light band under the driven track
+    t.width_px = 4.0;
     t.markers = false;
     t.poses = SamplePath(p.path, o.path_step);
     scene.trajectories.push_back(std::move(t));
@@ -95,7 +94,7 @@ SvgScene MissionScene(const MissionInputs& in, const MissionFigures& f, const Mi
   scene.trajectories.push_back({"estimated (POSE)", "#d62728", 1.0, false, false, Thinned(in.log.estimates, o.track_step)});
 
   SvgMarkers stations;
-  stations.label = "scan stations (" + f.stations_source + ")";
+  stations.label = f.log_stations ? "scan stations (TASK_PLAN)" : "stops of the vehicle (no TASK_PLAN)";
   stations.color = "#1f77b4";
   stations.heading_ticks = true;
   stations.size_px = 4.0;

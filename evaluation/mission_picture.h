@@ -20,6 +20,13 @@ struct MissionPictureOptions {
   double track_step = 0.05;  // m: a track keeps a pose this far from the last one kept
   bool free_space = true;    // draw the explored-area grid's cells
   bool odometry = true;      // draw ODOMETRY (aligned at its start)
+  SvgRenderOptions render = WideLegend();  // the drawing's size; the legend wider than render's default
+
+  static SvgRenderOptions WideLegend() {
+    SvgRenderOptions r;
+    r.legend_width_px = 420.0;
+    return r;
+  }
 };
 
 // The poses along a path: the start, then every piece sampled at most `step` m (or 0.1 rad of

@@ -6,20 +6,6 @@
 
 namespace minenav {
 
-const char* ToString(MissionStatusState s) {
-  switch (s) {
-    case MissionStatusState::kIdle: return "idle";
-    case MissionStatusState::kRunning: return "running";
-    case MissionStatusState::kPaused: return "paused";
-    case MissionStatusState::kDone: return "done";
-    case MissionStatusState::kFailed: return "failed";
-    case MissionStatusState::kAborted: return "aborted";
-    case MissionStatusState::kEstopped: return "estopped";
-    case MissionStatusState::kWaiting: return "waiting";
-  }
-  return "unknown";
-}
-
 namespace {
 
 using nlohmann::json;

@@ -2,7 +2,9 @@
 // What a finished mission left behind, as plain values: the parts of its LCM log that the
 // mission report judges (logger/mission_log.h reads them, decoding each channel), and the
 // coordinator's own report (coordinator_node.cc WriteReport, `--report-out`). No LCM here:
-// evaluation/mission_evaluation.h computes the figures from these.
+// evaluation/mission_evaluation.h computes the figures from these. The states are the
+// coordinator's own types (MissionState, TaskState, BtStatus, HeartbeatState), which carry
+// the messages' constants.
 
 #include <cstdint>
 #include <optional>
@@ -12,6 +14,9 @@
 #include "common/file_io.h"
 #include "common/geometry.h"
 #include "common/pose2.h"
+#include "coordinator/behavior_tree.h"
+#include "coordinator/coordinator.h"
+#include "coordinator/heartbeat_watch.h"
 #include "planner/motion.h"
 
 namespace minenav {
@@ -33,45 +38,26 @@ struct LoggedPath {
   PlannedPath path;         // empty when not feasible (or when its pieces did not decode)
 };
 
-// task_status_t's state constants (as the coordinator's TaskState).
-enum class TaskStatusState : int8_t { kPending = 0, kActive = 1, kDone = 2, kFailed = 3, kCanceled = 4 };
-
+// One TASK_STATUS line (the coordinator's TaskState names task_status_t's states).
 struct TaskStatusLine {
   int64_t utime = 0;
   int64_t task_id = 0;
-  TaskStatusState state = TaskStatusState::kPending;
+  TaskState state = TaskState::kPending;
   std::string message;
 };
 
-// mission_node_t's state constants (the behaviour tree's).
-enum class MissionNodeState : int8_t { kIdle = 0, kRunning = 1, kSuccess = 2, kFailure = 3 };
-
+// One node of the task tree in a MISSION_STATUS (mission_node_t: the behaviour tree's states).
 struct MissionNodeLine {
   std::string name;
-  MissionNodeState state = MissionNodeState::kIdle;
+  BtStatus state = BtStatus::kIdle;
 };
 
-// mission_status_t's state constants (the coordinator's MissionState).
-enum class MissionStatusState : int8_t {
-  kIdle = 0, kRunning = 1, kPaused = 2, kDone = 3, kFailed = 4, kAborted = 5, kEstopped = 6, kWaiting = 7
-};
-const char* ToString(MissionStatusState s);
-
+// One MISSION_STATUS (the coordinator's MissionState names mission_status_t's states).
 struct MissionStatusLine {
   int64_t utime = 0;
-  MissionStatusState state = MissionStatusState::kIdle;
+  MissionState state = MissionState::kIdle;
   std::string message;
   std::vector<MissionNodeLine> nodes;  // the task tree
-};
-
-// heartbeat_t's state constants.
-enum class HeartbeatState : int8_t { kStarting = 0, kOk = 1, kWarn = 2, kError = 3, kStopping = 4 };
-
-struct HeartbeatLine {
-  int64_t utime = 0;
-  std::string process;   // "process" or "process/instance"
-  HeartbeatState state = HeartbeatState::kOk;
-  std::string message;
 };
 
 // The log of a mission, decoded. Poses in log order.
@@ -84,7 +70,7 @@ struct MissionRecord {
   std::vector<LoggedPath> planner_paths;  // PATH
   std::vector<TaskStatusLine> task_status;
   std::vector<MissionStatusLine> mission_status;
-  std::vector<HeartbeatLine> heartbeats;
+  std::vector<HeartbeatInfo> heartbeats;  // utime: the heartbeat's own stamp
   std::vector<Pose2> scan_stations;    // SCAN_STATION targets of TASK_PLAN, in order, each task once
   int64_t first_utime = 0, last_utime = 0;  // event timestamps (us) of the first and last event
   int64_t events = 0;

@@ -105,15 +105,15 @@ class MissionLogReader {
     } else if (ch == c_.task_status) {
       const task_status_t m = Decode<task_status_t>(e);
       r.task_status.push_back(
-          {m.utime, m.task_id, CheckedState<TaskStatusState>(m.state, 4, "task_status_t"), m.message});
+          {m.utime, m.task_id, CheckedState<TaskState>(m.state, 4, "task_status_t"), m.message});
     } else if (ch == c_.mission_status) {
       const mission_status_t m = Decode<mission_status_t>(e);
       MissionStatusLine s;
       s.utime = m.utime;
-      s.state = CheckedState<MissionStatusState>(m.state, 7, "mission_status_t");
+      s.state = CheckedState<MissionState>(m.state, 7, "mission_status_t");
       s.message = m.message;
       for (const mission_node_t& n : m.nodes)
-        s.nodes.push_back({n.name, CheckedState<MissionNodeState>(n.state, 3, "mission_node_t")});
+        s.nodes.push_back({n.name, CheckedState<BtStatus>(n.state, 3, "mission_node_t")});
       r.mission_status.push_back(std::move(s));
     } else if (ch == c_.task_plan) {
       const TaskPlan plan = FromLcm(Decode<task_plan_t>(e));
@@ -121,8 +121,8 @@ class MissionLogReader {
         if (t.kind == TaskKind::kScanStation && stations_.insert(t.id).second) r.scan_stations.push_back(t.target);
     } else if (ch == c_.heartbeat) {
       const heartbeat_t m = Decode<heartbeat_t>(e);
-      r.heartbeats.push_back({m.utime, m.instance.empty() ? m.process : m.process + "/" + m.instance,
-                              CheckedState<HeartbeatState>(m.state, 4, "heartbeat_t"), m.message});
+      r.heartbeats.push_back({m.process, m.instance, CheckedState<HeartbeatState>(m.state, 4, "heartbeat_t"), m.message,
+                              m.utime});
     } else if (ch == c_.contour_map) {
       last_map_ = e;  // decoded at the end: only the last one is wanted
     }

@@ -225,7 +225,7 @@ TEST(MissionReportCli, TheFiguresOfAHandMadeMission) {
   // Times and stations.
   EXPECT_DOUBLE_EQ(j["time"]["mission_s"].get<double>(), 75.0);
   EXPECT_DOUBLE_EQ(j["time"]["exploration_s"].get<double>(), 39.0);
-  EXPECT_EQ(j["time"]["final_state"], "done");
+  EXPECT_EQ(j["time"]["final_state"], "DONE");
   EXPECT_EQ(j["stations"]["source"], "TASK_PLAN scan stations");
   EXPECT_EQ(j["stations"]["poses"].size(), 2u);
   EXPECT_EQ(j["log"]["bad_messages"], 0);

@@ -168,7 +168,7 @@ int RunMissionReportCommand(const std::vector<std::string>& raw_args) {
   if (!json_out.empty()) WriteFileAtomically(json_out, MissionFiguresToJson(in, figures, options));
   if (!report_out.empty()) WriteFileAtomically(report_out, MissionReportMarkdown(in, figures, options));
   if (!svg_out.empty() || !png_out.empty()) {
-    const std::string svg = RenderSvg(MissionScene(in, figures, options, picture));
+    const std::string svg = RenderSvg(MissionScene(in, figures, options, picture), picture.render);
     const std::string svg_path = svg_out.empty() ? png_out + ".tmp." + std::to_string(::getpid()) + ".svg" : svg_out;
     WriteFileAtomically(svg_path, svg);
     if (!png_out.empty()) {
