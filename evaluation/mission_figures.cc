@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <regex>
 
 #include "common/pose_at_time.h"
 
@@ -203,19 +202,48 @@ DepthFigures MeasureFaceAdvance(const Segment& face, const Eigen::Vector2d& adva
 
 // ---------------------------------------------------------------------------- planning times
 
+namespace {
+
+// A decimal number "123" or "123.45" (at most 12 digits either side of the point) that is the
+// whole of `text`.
+std::optional<double> Decimal(const std::string& text) {
+  const size_t point = text.find('.');
+  const std::string whole = text.substr(0, point);
+  const std::string fraction = point == std::string::npos ? "" : text.substr(point + 1);
+  auto digits = [](const std::string& d) {
+    return !d.empty() && d.size() <= 12 && d.find_first_not_of("0123456789") == std::string::npos;
+  };
+  if (!digits(whole) || (point != std::string::npos && !digits(fraction))) return std::nullopt;
+  return std::stod(text);
+}
+
+}  // namespace
+
 std::optional<PlannerSearch> ParsePlannerStatus(const std::string& status) {
-  // The answer is the last "ok: ..." of the line (a replan's prefix names poses and pieces).
-  static const std::regex kAnswer(
-      R"(ok: ([0-9]{1,12}(?:\.[0-9]{1,12})?) m, .*, ([0-9]{1,12}(?:\.[0-9]{1,12})?) ms on map version ([0-9]{1,15})\s*$)");
+  // The answer is the last "ok: ..." of the line (a replan's prefix names poses and pieces):
+  // "ok: L m, ..., T ms on map version V".
   const size_t at = status.rfind("ok: ");
   if (at == std::string::npos || status.size() > 4096) return std::nullopt;
-  std::smatch m;
-  const std::string answer = status.substr(at);
-  if (!std::regex_match(answer, m, kAnswer)) return std::nullopt;
+  const std::string answer = status.substr(at + 4);
+  const size_t metres = answer.find(" m, ");
+  const std::string kTail = " ms on map version ";
+  const size_t tail = answer.rfind(kTail);
+  if (metres == std::string::npos || tail == std::string::npos || tail < metres) return std::nullopt;
+  // V: the digits after the tail, then nothing but spaces.
+  std::string version = answer.substr(tail + kTail.size());
+  version.erase(version.find_last_not_of(" \t\r\n") + 1);
+  if (version.empty() || version.size() > 15 || version.find_first_not_of("0123456789") != std::string::npos)
+    return std::nullopt;
+  // T: the number before the tail, after ", ".
+  const size_t comma = answer.rfind(", ", tail);
+  if (comma == std::string::npos || comma < metres + 2) return std::nullopt;
+  const std::optional<double> length = Decimal(answer.substr(0, metres));
+  const std::optional<double> ms = Decimal(answer.substr(comma + 2, tail - comma - 2));
+  if (!length || !ms) return std::nullopt;
   PlannerSearch s;
-  s.length_m = std::stod(m[1].str());
-  s.ms = std::stod(m[2].str());
-  s.map_version = std::stoll(m[3].str());
+  s.length_m = *length;
+  s.ms = *ms;
+  s.map_version = std::stoll(version);
   s.replanned = status.rfind("replanned:", 0) == 0;
   return s;
 }

@@ -5,7 +5,6 @@
 
 #include <gtest/gtest.h>
 
-#include <regex>
 
 namespace minenav {
 namespace {
@@ -32,14 +31,20 @@ TEST(SvgRender, MarkersOfEachShapeWithTextsAndLegend) {
   for (const std::string text : {">1</text>", ">2</text>", ">box</text>", ">stations</text>", ">start</text>",
                                  ">targets</text>", ">worst</text>", ">walls</text>"})
     EXPECT_NE(svg.find(text), std::string::npos) << text;
-  // The cross at (30, 20) is inside the drawing: the view grew to hold it.
-  const std::regex frame(R"re(<rect x="([0-9.]+)" y="([0-9.]+)" width="([0-9.]+)" height="([0-9.]+)" fill="none")re");
-  std::smatch m;
-  ASSERT_TRUE(std::regex_search(svg, m, frame));
-  const double right = std::stod(m[1].str()) + std::stod(m[3].str());
-  const std::regex cross(R"re(<path d="M([0-9.]+) ([0-9.]+)L([0-9.]+) ([0-9.]+)M)re");
-  ASSERT_TRUE(std::regex_search(svg, m, cross));
-  EXPECT_LT(std::stod(m[3].str()), right);
+  // The cross at (30, 20) is inside the drawing: the view grew to hold it. The drawing's frame
+  // is the first rect with fill="none"; the cross the path that starts with its first stroke.
+  auto number_after = [&](size_t from, const std::string& key) {
+    const size_t at = svg.find(key, from) + key.size();
+    return std::stod(svg.substr(at, svg.find_first_of("\" ", at) - at));
+  };
+  const size_t frame = svg.rfind("<rect", svg.find("fill=\"none\""));
+  const double right = number_after(frame, "x=\"") + number_after(frame, "width=\"");
+  const size_t group = svg.find("<g stroke=\"#f00\"");
+  ASSERT_NE(group, std::string::npos);
+  const size_t cross = svg.find("<path d=\"M", group);
+  const size_t l = svg.find('L', cross);
+  const double cross_right = std::stod(svg.substr(l + 1, svg.find(' ', l) - l - 1));
+  EXPECT_LT(cross_right, right);
 }
 
 }  // namespace
