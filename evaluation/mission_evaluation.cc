@@ -429,9 +429,10 @@ std::vector<std::string> HeadlineLines(const MissionInputs& in, const MissionFig
     cuts.pop_back();
     out.push_back(cuts);
   }
-  std::string planning = "planning: " + std::to_string(f.planning.searches) + " searches, median " +
-                         Fixed(f.planning.search_ms.median, 1) + " ms, max " + Fixed(f.planning.search_ms.max, 1) +
-                         " ms";
+  std::string planning = "planning: " + std::to_string(f.planning.searches) + " searches";
+  if (f.planning.searches > 0)
+    planning += ", median " + Fixed(f.planning.search_ms.median, 1) + " ms, max " + Fixed(f.planning.search_ms.max, 1) +
+                " ms";
   if (f.planning.have_mission)
     planning += "; " + std::to_string(f.planning.drives_planned_ahead) + " of " + std::to_string(f.planning.drives) +
                 " drives planned ahead";
@@ -516,8 +517,11 @@ std::string MissionReportMarkdown(const MissionInputs& in, const MissionFigures&
   md << "\n## Planning\n\n| figure | value |\n|---|---|\n"
      << "| path planner searches | " << p.searches << " (" << p.replanned << " replans), " << p.refused << " refused, "
      << p.unparsed << " status lines not understood |\n"
-     << "| search time | median " << Fixed(p.search_ms.median, 1) << " ms, p95 " << Fixed(p.search_ms.p95, 1)
-     << " ms, max " << Fixed(p.search_ms.max, 1) << " ms |\n";
+     << "| search time | "
+     << (p.search_ms.count == 0 ? std::string("-")
+                                : "median " + Fixed(p.search_ms.median, 1) + " ms, p95 " + Fixed(p.search_ms.p95, 1) +
+                                      " ms, max " + Fixed(p.search_ms.max, 1) + " ms")
+     << " |\n";
   if (p.have_mission)
     md << "| effective planning wait (coordinator) | median " << Fixed(p.waits_s.median, 2) << " s, max "
        << Fixed(p.waits_s.max, 2) << " s over " << p.waits_s.count << " drives; " << p.waits_zero << " waited 0 s |\n"
