@@ -27,9 +27,11 @@ inline std::string Quote(const std::string& s) {
   return q + "'";
 }
 
-inline RunResult LogTool(const std::string& args) {
+// `env`: assignments the shell puts before the command (e.g. "PATH=/nonexistent").
+inline RunResult LogTool(const std::string& args, const std::string& env = "") {
   const std::string out = TempPath("stdout.txt"), err = TempPath("stderr.txt");
-  const std::string cmd = std::string(LOG_TOOL_PATH) + " " + args + " >" + Quote(out) + " 2>" + Quote(err);
+  const std::string cmd = (env.empty() ? "" : env + " ") + std::string(LOG_TOOL_PATH) + " " + args + " >" +
+                          Quote(out) + " 2>" + Quote(err);
   const int status = std::system(cmd.c_str());
   RunResult r;
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;

@@ -62,6 +62,29 @@ class Writer {
   std::ostringstream os_;
 };
 
+// One marker centred on (x, y) px, `r` px from the centre to its edge.
+std::string MarkerShape(SvgMarkers::Shape shape, double x, double y, double r) {
+  std::ostringstream os;
+  os << std::fixed << std::setprecision(1);
+  switch (shape) {
+    case SvgMarkers::Shape::kCircle:
+      os << "<circle cx=\"" << x << "\" cy=\"" << y << "\" r=\"" << r << "\"/>";
+      break;
+    case SvgMarkers::Shape::kSquare:
+      os << "<rect x=\"" << x - r << "\" y=\"" << y - r << "\" width=\"" << 2 * r << "\" height=\"" << 2 * r << "\"/>";
+      break;
+    case SvgMarkers::Shape::kDiamond:
+      os << "<path d=\"M" << x << " " << y - r << "L" << x + r << " " << y << "L" << x << " " << y + r << "L" << x - r
+         << " " << y << "Z\"/>";
+      break;
+    case SvgMarkers::Shape::kCross:
+      os << "<path d=\"M" << x - r << " " << y - r << "L" << x + r << " " << y + r << "M" << x - r << " " << y + r << "L"
+         << x + r << " " << y - r << "\" stroke-width=\"2.5\"/>";
+      break;
+  }
+  return os.str();
+}
+
 }  // namespace
 
 std::string RenderSvg(const SvgScene& scene, const SvgRenderOptions& options) {
@@ -76,6 +99,8 @@ std::string RenderSvg(const SvgScene& scene, const SvgRenderOptions& options) {
   }
   for (const auto& t : scene.trajectories)
     for (const auto& p : t.poses) b.Add(p.translation());
+  for (const auto& m : scene.markers)
+    for (const auto& p : m.poses) b.Add(p.translation());
   const bool have_lines_or_tracks = !b.empty();
   // Scan points widen the view only when nothing else defines it: a stray long return
   // should not shrink the mine to a corner.
@@ -203,6 +228,28 @@ std::string RenderSvg(const SvgScene& scene, const SvgRenderOptions& options) {
     }
   }
 
+  for (const auto& m : scene.markers) {
+    if (m.poses.empty()) continue;
+    os << "<g stroke=\"" << m.color << "\" fill=\"white\" stroke-width=\"1.5\">\n";
+    for (const auto& p : m.poses) {
+      os << MarkerShape(m.shape, f.X(p.x), f.Y(p.y), m.size_px);
+      if (m.heading_ticks) {
+        const Eigen::Vector2d tip = p * Eigen::Vector2d(tick_m, 0.0);
+        os << "<line x1=\"" << f.X(p.x) << "\" y1=\"" << f.Y(p.y) << "\" x2=\"" << f.X(tip.x()) << "\" y2=\""
+           << f.Y(tip.y()) << "\"/>";
+      }
+      os << "\n";
+    }
+    os << "</g>\n";
+    if (!m.texts.empty()) {
+      os << "<g font-size=\"11\" fill=\"" << m.color << "\">\n";
+      for (size_t i = 0; i < m.texts.size() && i < m.poses.size(); ++i)
+        os << "<text x=\"" << f.X(m.poses[i].x) + m.size_px + 2.0 << "\" y=\"" << f.Y(m.poses[i].y) - m.size_px - 1.0
+           << "\">" << Escape(m.texts[i]) << "</text>\n";
+      os << "</g>\n";
+    }
+  }
+
   os << "</g>\n";
   // Scale bar under the drawing, at the left.
   const double bar_y = f.Y(b.min_y) + 25.0, bar_x = f.X(b.min_x);
@@ -247,6 +294,13 @@ std::string RenderSvg(const SvgScene& scene, const SvgRenderOptions& options) {
   for (const auto& t : scene.trajectories) {
     if (t.label.empty()) continue;
     entry_line(t.label, t.color, t.dashed, t.width_px);
+  }
+  for (const auto& m : scene.markers) {
+    if (m.label.empty()) continue;
+    os << "<g stroke=\"" << m.color << "\" fill=\"white\" stroke-width=\"1.5\">"
+       << MarkerShape(m.shape, lx + 15.0, ly - 5.0, std::min(m.size_px, 6.0)) << "</g><text x=\"" << lx + 40
+       << "\" y=\"" << ly << "\">" << Escape(m.label) << "</text>\n";
+    ly += 22.0;
   }
   os << "</g>\n</svg>\n";
   return w.str();

@@ -63,6 +63,19 @@ struct SvgArea {
   std::vector<std::vector<Eigen::Vector2d>> polygons;
 };
 
+// Markers at places (scan stations, cut targets, where a map is worst): a shape, an optional
+// heading tick, and an optional text beside each.
+struct SvgMarkers {
+  enum class Shape { kCircle, kSquare, kDiamond, kCross };
+  std::string label;
+  std::string color;
+  Shape shape = Shape::kCircle;
+  double size_px = 5.0;        // half the shape's width
+  bool heading_ticks = false;  // a tick from the centre along each pose's heading
+  std::vector<Pose2> poses;
+  std::vector<std::string> texts;  // texts[i] is written beside poses[i]; may be shorter
+};
+
 struct SvgScene {
   std::string title;
   std::vector<std::string> notes;  // extra lines under the title
@@ -71,6 +84,7 @@ struct SvgScene {
   std::vector<SvgLinks> links;
   std::vector<SvgTrajectory> trajectories; // on top
   std::vector<SvgArea> areas;              // under everything
+  std::vector<SvgMarkers> markers;         // over the trajectories
 };
 
 struct SvgRenderOptions {

@@ -6,9 +6,11 @@ MINENAV_ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 MINENAV_JOBS="${MINENAV_JOBS:-$(nproc)}"
 
 # Debian packages the project needs; installed with apt-get only when missing.
+# librsvg2-bin: rsvg-convert, which turns the mission's SVG picture into its PNG
+# (log_tool mission-report --png-out; its test checks the PNG).
 MINENAV_PACKAGES=(build-essential cmake liblcm-dev liblcm-bin libeigen3-dev libgtest-dev
                   libgmock-dev zlib1g-dev libbz2-dev nlohmann-json3-dev iproute2 util-linux python3
-                  libsystemd-dev)
+                  libsystemd-dev librsvg2-bin)
 
 # minenav_install_missing PACKAGE...: apt-get installs those of the Debian packages not installed.
 minenav_install_missing() {
