@@ -182,7 +182,7 @@ RefusalFigures MeasureRefusals(const MissionRecord& log, const MissionReport* mi
         tasks.insert({t.task_id, static_cast<int>(t.state), t.message}).second)
       r.task_failures.push_back(t);
   std::map<std::pair<std::string, int>, size_t> problem;  // (process, state) -> index
-  for (const HeartbeatInfo& h : log.heartbeats) {
+  for (const HeartbeatSample& h : log.heartbeats) {
     if (h.state != HeartbeatState::kWarn && h.state != HeartbeatState::kError) continue;
     const std::string process = h.instance.empty() ? h.process : h.process + "/" + h.instance;
     const auto key = std::make_pair(process, static_cast<int>(h.state));

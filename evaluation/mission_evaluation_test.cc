@@ -346,7 +346,12 @@ TEST(MissionTimes, ExplorationAndMissionFromTheStatusLines) {
 TEST(Refusals, EachProblemOnceWithItsFirstLine) {
   MissionRecord log;
   auto hb = [&](double t, const std::string& p, HeartbeatState s, const std::string& m) {
-    log.heartbeats.push_back({p, "", s, m, static_cast<int64_t>(t * 1e6)});
+    HeartbeatSample h;
+    h.process = p;
+    h.state = s;
+    h.message = m;
+    h.utime = static_cast<int64_t>(t * 1e6);
+    log.heartbeats.push_back(h);
   };
   hb(1, "contour_mapper", HeartbeatState::kOk, "fine");
   hb(2, "contour_mapper", HeartbeatState::kWarn, "3 scans refused");

@@ -70,7 +70,7 @@ struct MissionRecord {
   std::vector<LoggedPath> planner_paths;  // PATH
   std::vector<TaskStatusLine> task_status;
   std::vector<MissionStatusLine> mission_status;
-  std::vector<HeartbeatInfo> heartbeats;  // utime: the heartbeat's own stamp
+  std::vector<HeartbeatSample> heartbeats;  // utime: the heartbeat's own stamp
   std::vector<Pose2> scan_stations;    // SCAN_STATION targets of TASK_PLAN, in order, each task once
   int64_t first_utime = 0, last_utime = 0;  // event timestamps (us) of the first and last event
   int64_t events = 0;

@@ -40,7 +40,10 @@ TEST(MessageCatalog, ChannelsMapToTheirTypes) {
   EXPECT_EQ(ExpectedTypeForChannel("PATHOLOGY"), "");
   EXPECT_EQ(ExpectedTypeForChannel("SIM_WORLD"), "minenav.line_map_t");
   EXPECT_EQ(ExpectedTypeForChannel("SOMETHING_ELSE"), "");
-  EXPECT_EQ(KnownMessageTypes().size(), 16u);
+  EXPECT_EQ(ExpectedTypeForChannel("DRIVE_PATH"), "minenav.path_t");
+  EXPECT_EQ(ExpectedTypeForChannel("CUT_TASK"), "minenav.cutter_command_t");
+  EXPECT_EQ(ExpectedTypeForChannel("TASK_REQUEST"), "minenav.task_request_t");
+  EXPECT_EQ(KnownMessageTypes().size(), 17u);  // every top-level type of lcmtypes/ but the nested ones
 }
 
 TEST(MessageCatalog, ProbeTellsWrongTypeTruncationAndForeignApart) {

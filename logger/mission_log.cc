@@ -5,6 +5,7 @@
 
 #include "common/file_io.h"
 #include "common/node/conversions.h"
+#include "common/node/heartbeat_conversion.h"
 #include "common/node/event_log.h"
 #include "minenav/heartbeat_t.hpp"
 #include "minenav/mission_status_t.hpp"
@@ -120,9 +121,7 @@ class MissionLogReader {
       for (const Task& t : plan.tasks)
         if (t.kind == TaskKind::kScanStation && stations_.insert(t.id).second) r.scan_stations.push_back(t.target);
     } else if (ch == c_.heartbeat) {
-      const heartbeat_t m = Decode<heartbeat_t>(e);
-      r.heartbeats.push_back({m.process, m.instance, CheckedState<HeartbeatState>(m.state, 4, "heartbeat_t"), m.message,
-                              m.utime});
+      r.heartbeats.push_back(HeartbeatSampleFromLcm(Decode<heartbeat_t>(e), e.timestamp));
     } else if (ch == c_.contour_map) {
       last_map_ = e;  // decoded at the end: only the last one is wanted
     }

@@ -18,7 +18,7 @@
 #include "logger/log_tool_commands.h"
 #include "logger/mission_log.h"
 #include "mapper/contour_map_io.h"
-#include "tests/child_process.h"
+#include "common/child_process.h"
 
 namespace minenav {
 
@@ -46,7 +46,7 @@ constexpr const char* kSvgToPng = "rsvg-convert";
 void ConvertSvgToPng(const std::string& converter, const std::string& svg_path, const std::string& png_path) {
   const std::string tmp = png_path + ".tmp." + std::to_string(::getpid()) + ".png";
   const std::string output = tmp + ".log";
-  const testing::ProgramRun run = testing::RunProgram(converter, {"--format=png", "-o", tmp, svg_path}, output, 120.0);
+  const ProgramRun run = RunProgram(converter, {"--format=png", "-o", tmp, svg_path}, output, 120.0);
   std::error_code ignored;
   std::filesystem::remove(output, ignored);
   const std::string png = ReadFile(tmp);

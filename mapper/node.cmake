@@ -30,7 +30,7 @@ target_link_libraries(contour_mapper PRIVATE minenav_contour_mapper_node)
 if(EXISTS "${CMAKE_SOURCE_DIR}/tests/child_process.cc")
   minenav_test(NAME contour_mapper_process_test
     SOURCES ${CMAKE_CURRENT_LIST_DIR}/contour_mapper_process_test.cc "${CMAKE_SOURCE_DIR}/tests/child_process.cc"
-    LIBS minenav_mapper minenav_map_evaluation minenav_common)
+    LIBS minenav_mapper minenav_map_evaluation minenav_common minenav_child_process)
   target_compile_definitions(contour_mapper_process_test PRIVATE
     MINENAV_CONTOUR_MAPPER_BIN="$<TARGET_FILE:contour_mapper>" MINENAV_LOG_TOOL_BIN="$<TARGET_FILE:log_tool>")
   add_dependencies(contour_mapper_process_test contour_mapper log_tool)
@@ -41,7 +41,8 @@ if(EXISTS "${CMAKE_SOURCE_DIR}/tests/child_process.cc")
   add_executable(contour_mapper_live_test
     ${CMAKE_CURRENT_LIST_DIR}/contour_mapper_live_test.cc "${CMAKE_SOURCE_DIR}/tests/child_process.cc")
   target_include_directories(contour_mapper_live_test PRIVATE "${CMAKE_SOURCE_DIR}")
-  target_link_libraries(contour_mapper_live_test PRIVATE minenav_mapping_session minenav_node GTest::gtest_main)
+  target_link_libraries(contour_mapper_live_test PRIVATE minenav_mapping_session minenav_node minenav_child_process
+                        GTest::gtest_main)
   minenav_warnings(contour_mapper_live_test)
   set_target_properties(contour_mapper_live_test PROPERTIES RUNTIME_OUTPUT_DIRECTORY "${CMAKE_BINARY_DIR}/tests")
   target_compile_definitions(contour_mapper_live_test PRIVATE
@@ -58,7 +59,8 @@ if(EXISTS "${CMAKE_SOURCE_DIR}/tests/child_process.cc")
   add_executable(contour_mapper_live_stop_test
     ${CMAKE_CURRENT_LIST_DIR}/contour_mapper_live_stop_test.cc "${CMAKE_SOURCE_DIR}/tests/child_process.cc")
   target_include_directories(contour_mapper_live_stop_test PRIVATE "${CMAKE_SOURCE_DIR}")
-  target_link_libraries(contour_mapper_live_stop_test PRIVATE minenav_mapping_session minenav_node GTest::gtest_main)
+  target_link_libraries(contour_mapper_live_stop_test PRIVATE minenav_mapping_session minenav_node minenav_child_process
+                        GTest::gtest_main)
   minenav_warnings(contour_mapper_live_stop_test)
   set_target_properties(contour_mapper_live_stop_test PROPERTIES RUNTIME_OUTPUT_DIRECTORY "${CMAKE_BINARY_DIR}/tests")
   target_compile_definitions(contour_mapper_live_stop_test PRIVATE
