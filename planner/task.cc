@@ -1,0 +1,72 @@
+#include "planner/task.h"
+
+#include <sstream>
+#include <utility>
+
+namespace minenav {
+
+std::string ToString(TaskKind kind) {
+  switch (kind) {
+    case TaskKind::kMove: return "move";
+    case TaskKind::kBoxCut: return "box_cut";
+    case TaskKind::kSlabCut: return "slab_cut";
+    case TaskKind::kBackOut: return "back_out";
+    case TaskKind::kScanStation: return "scan_station";
+    case TaskKind::kTurn: return "turn";
+    case TaskKind::kWait: return "wait";
+  }
+  return "unknown";
+}
+
+std::string ToString(PlanStatus status) {
+  switch (status) {
+    case PlanStatus::kOk: return "ok";
+    case PlanStatus::kComplete: return "complete";
+    case PlanStatus::kFailed: return "failed";
+  }
+  return "unknown";
+}
+
+std::string ToString(Appendages appendages) {
+  switch (appendages) {
+    case Appendages::kAny: return "any";
+    case Appendages::kStowed: return "stowed";
+    case Appendages::kCutting: return "cutting";
+  }
+  return "unknown";
+}
+
+std::string FixedNumber(double v, int digits) {
+  std::ostringstream os;
+  os.setf(std::ios::fixed);
+  os.precision(digits);
+  os << v;
+  return os.str();
+}
+
+std::string PoseText(const Pose2& p) {
+  return "(" + FixedNumber(p.x) + ", " + FixedNumber(p.y) + ", " + FixedNumber(p.theta) + ")";
+}
+
+std::vector<Segment> TaskMap::Boundary() const {
+  std::vector<Segment> out = walls;
+  out.insert(out.end(), frontiers.begin(), frontiers.end());
+  return out;
+}
+
+TaskMap TaskMapFromContours(const std::vector<mapper::Contour>& contours, const FreeSpaceOptions& options) {
+  ContourFreeSpace space = MakeContourFreeSpace(contours, options);
+  TaskMap map;
+  map.walls = std::move(space.walls);
+  map.frontiers = std::move(space.frontiers);
+  map.oriented = true;
+  return map;
+}
+
+TaskMap TaskMapFromSegments(std::vector<Segment> segments) {
+  TaskMap map;
+  map.walls = std::move(segments);
+  return map;
+}
+
+}  // namespace minenav
