@@ -1,0 +1,140 @@
+#pragma once
+// The next scan station of a survey of unknown space (thesis 4.6: "Automatic sensor
+// placement was not addressed in this thesis ... In the mine, this amounted to taking a scan
+// at each 'intersection' and usually halfway between intersections").
+//
+// From the live contour map (its walls and the frontiers that close the known free space,
+// planner/contour_free_space.h), the vehicle's pose and footprint and the stations visited,
+// PlanNextStation chooses where to scan next:
+//
+//   frontiers     the frontiers at least min_frontier_length long. One whose middle a visited
+//                 station saw from within looked_distance (nothing in between) and that is
+//                 still open is a gap the ladar cannot close (out of range, a crack): dropped.
+//   candidates    (a) before each frontier: the points of a square grid (standoff_step) about
+//                 its middle, on its free side, min_standoff to max_standoff from the middle,
+//                 in the known free space, at least min_wall_distance from walls and
+//                 frontiers, with no wall between them and the middle (a long
+//                 vehicle needs room before a frontier across its entry: the grid reaches
+//                 down the entry as well as across it); (b) at intersections: points of a grid
+//                 (intersection_spacing) in the known free space from which rays open into at
+//                 least three separate arms (an arm: a ray that meets a frontier, or nothing,
+//                 or a wall farther than twice the point's clearance), the most open of those
+//                 within min_station_spacing of each other. None within min_station_spacing of a
+//                 visited station.
+//   prediction    from a candidate, prediction_rays rays out to sensor_range against walls and
+//                 frontiers: a ray that meets a wall sees the map (overlap), one that meets a
+//                 frontier sees unknown space behind it. OVERLAP = wall rays / (wall rays +
+//                 frontier rays), the fraction of the station's predicted returns already in
+//                 the map, which the mapper matches the scan against (>= min_overlap);
+//                 NEW AREA = for each frontier ray, the sector between the frontier and
+//                 unknown_depth beyond it (capped at sensor_range): dtheta/2 (r_far^2 - r^2)
+//                 (>= min_new_area).
+//   reachable     the path planner (Se2Planner on walls + frontiers: the known free space
+//                 only, the request's footprint and clearance) from the vehicle's pose; the
+//                 candidate's heading is the first free of: the vehicle's heading, its
+//                 opposite, facing the frontier (or the arms), its opposite and square to it.
+//   cost          path cost (m: the planner's cost, metres with reversing and cusps priced)
+//                 - area_value x new area (m per m^2). Candidates are planned in order of the
+//                 straight-line lower bound of the cost; planning stops when no unplanned
+//                 candidate's bound can beat the best cost found, or after max_plans plans.
+//
+// No candidate reachable and no frontier left that a station could still close: COMPLETE,
+// with the reason ("no reachable frontier: 3 frontiers left, none reachable: ..."). Plans
+// still to try when the budget ran out: FAILED (we do not know).
+//
+// Plain C++: no LCM, clock or I/O.
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "common/pose2.h"
+#include "planner/footprint.h"
+#include "planner/motion.h"
+#include "planner/search_limits.h"
+#include "planner/se2_planner.h"
+#include "planner/task.h"
+
+namespace minenav {
+
+class OptionScope;
+
+struct SurveyPlannerOptions {
+  double sensor_range = 30.0;         // m, the ladar's useful range in the prediction. Default 30.
+  int prediction_rays = 360;          // rays cast from a candidate to predict its scan. Default 360.
+  double min_overlap = 0.5;           // fraction of a station's predicted returns already in the map. Default 0.5.
+  double unknown_depth = 6.0;         // m beyond a frontier counted as new area (a room's width). Default 6.
+  double area_value = 0.25;           // m of path cost one m^2 of new area is worth. Default 0.25.
+  double min_new_area = 5.0;          // m^2 a station must be expected to see new. Default 5.
+  double min_frontier_length = 1.0;   // m: shorter frontiers are gaps, not openings. Default 1.
+  double min_standoff = 2.0;          // m from a frontier's middle to the nearest candidate before it. Default 2.
+  double max_standoff = 12.0;         // m to the farthest. Default 12.
+  double standoff_step = 1.0;         // m, grid of the candidates before one frontier. Default 1.
+  // m: a candidate at least this far from every wall and frontier (a scan from the middle of
+  // an entry sees its walls square on; one hugging a wall sees it edge-on). Default 1.5.
+  double min_wall_distance = 1.5;
+  double min_station_spacing = 3.0;   // m between a candidate and any visited station (and between intersections). Default 3.
+  double looked_distance = 4.0;       // m: a frontier a visited station saw from this near and still open is dropped. Default 4.
+  double intersection_spacing = 1.0;  // m, grid of the intersection search; 0 = no intersection candidates. Default 1.
+  int max_plans = 12;                 // path plans per decision. Default 12.
+  int64_t plan_expansions = 50'000;   // expansions each plan may take. Default 50,000.
+};
+
+// "" when usable, else one line naming the option.
+std::string ValidateOptions(const SurveyPlannerOptions& options);
+void DeclareOptions(OptionScope scope, SurveyPlannerOptions& options);
+
+struct SurveyRequest {
+  Pose2 vehicle;                // where the vehicle is (it has scanned there)
+  double clearance = 0.0;       // m, the path keeps this from walls and frontiers
+  std::vector<Pose2> visited;   // stations scanned before
+};
+
+// What a candidate station would see from `position` (PredictView).
+struct PredictedView {
+  int wall_rays = 0;      // rays that meet a wall within sensor_range
+  int frontier_rays = 0;  // rays that meet a frontier within sensor_range
+  double overlap = 0.0;   // wall_rays / (wall_rays + frontier_rays); 0 when neither
+  double new_area = 0.0;  // m^2
+};
+
+struct StationCandidate {
+  Pose2 pose;
+  int frontier = -1;           // index in SurveyDecision::frontiers; -1 for an intersection
+  double standoff = 0.0;       // m from the frontier's middle (frontier candidates)
+  PredictedView view;
+  double bound = 0.0;          // m: straight-line distance - area_value x new area
+  bool feasible = false;       // passed the prediction (overlap, new area) and the footprint fits
+  bool planned = false;
+  double path_cost = 0.0;      // m, when reachable
+  double cost = 0.0;           // m: path_cost - area_value x new area, when reachable
+  std::string rejected;        // why it is no station ("" while it may be)
+};
+
+struct FrontierState {
+  Segment segment;
+  size_t map_index = 0;  // in TaskMap::frontiers
+  std::string dropped;  // why no station is looked for before it ("" = open)
+};
+
+struct SurveyDecision {
+  TaskPlan plan;                           // OK: one SCAN_STATION; COMPLETE or FAILED with the reason
+  std::vector<FrontierState> frontiers;    // the map's frontiers at least min_frontier_length long
+  int short_frontiers = 0;                 // frontiers shorter than that (ignored)
+  std::vector<StationCandidate> candidates;
+  std::optional<size_t> chosen;            // index into candidates
+  PlannedPath path;                        // from the vehicle to the chosen station
+  int plans = 0;                           // path plans made
+  int64_t expansions = 0;                  // their expansions
+};
+
+SurveyDecision PlanNextStation(const TaskMap& map, const Footprint& footprint, const SurveyRequest& request,
+                               const SurveyPlannerOptions& options, const Se2PlannerOptions& planner_options,
+                               const SearchLimits& limits = {});
+
+// The prediction of a scan from `position` on `map` (walls and frontiers), as PlanNextStation
+// makes it (tests measure the overlap bound with it).
+PredictedView PredictView(const TaskMap& map, const Eigen::Vector2d& position, const SurveyPlannerOptions& options);
+
+}  // namespace minenav
