@@ -59,8 +59,8 @@ void DeclareOptions(ConfigSchema& s, TaskPlannerNodeOptions& o) {
                "task requests: SURVEY_NEXT (the next scan station) or ADVANCE (box cut, slab cut, back out)");
   s.AddChannel("map_channel", &o.map_channel, "subscribes", "contour_map_t",
                "the contour map (plain or zlib): its walls and frontiers");
-  s.AddString("line_map_channel", &o.line_map_channel,
-              "subscribes line_map_t when set: ADVANCE requests plan on the latest line map there (walls only)");
+  s.AddChannel("line_map_channel", &o.line_map_channel, "subscribes", "line_map_t",
+               "a line map: ADVANCE requests plan on the latest one there (walls only); empty = none");
   s.AddChannel("pose_channel", &o.pose_channel, "subscribes", "pose_estimate_t",
                "the vehicle's pose estimate: the places the ladar looked from");
   s.AddChannel("plan_channel", &o.plan_channel, "publishes", "task_plan_t", "the answers, tagged with the request_id");
