@@ -81,7 +81,7 @@ void DeclareOptions(OptionScope s, AdvanceOptions& o) {
   DeclareOptions(s.Nested("entry"), o.entry);
 }
 
-AdvanceResult PlanAdvance(const TaskMap& map, const Footprint& footprint_in, const AdvanceRequest& r,
+AdvanceResult PlanAdvance(const TaskMap& map_in, const Footprint& footprint_in, const AdvanceRequest& r,
                           const AdvanceOptions& o, const Se2PlannerOptions& planner_options, const SearchLimits& limits) {
   AdvanceResult result;
   TaskPlan& plan = result.plan;
@@ -100,6 +100,8 @@ AdvanceResult PlanAdvance(const TaskMap& map, const Footprint& footprint_in, con
   if (!std::isfinite(r.clearance) || r.clearance < 0.0) return fail("clearance " + FixedNumber(r.clearance) + " m is not >= 0");
   const Footprint footprint = Normalized(footprint_in);
   const BodyExtent body = ExtentOf(footprint);
+  // The vehicle stands where the ladar looked from: a frontier through it is no boundary.
+  const TaskMap map = WithoutFrontiersAt(map_in, footprint, r.vehicle, r.clearance + planner_options.collision_step);
 
   EntryResult found = FindEntry(map, r.face_hint, r.direction, o.entry);
   if (!found.entry) return fail(found.reason);

@@ -9,7 +9,10 @@
 #include "common/angle.h"
 #include "common/config.h"
 #include "common/segment_index.h"
+#include "planner/clearance_field.h"
 #include "planner/contour_free_space.h"
+#include "planner/grid_dijkstra.h"
+#include "planner/occupancy_grid.h"
 
 namespace minenav {
 namespace {
@@ -83,6 +86,42 @@ int CountArms(const Boundary& b, const Eigen::Vector2d& p, double clearance, dou
   return arms;
 }
 
+// Lower bounds of the path length from the vehicle: Dijkstra over the cells where the
+// vehicle's centre can be at all (clearance >= the footprint's inscribed radius + the
+// request's, less the cells' slack), as Se2Planner's own 2-D heuristic. Infinity where no
+// corridor wide enough joins the cell to the vehicle's (those need no plan); the straight
+// distance when the vehicle's own cell is not among them (a tight spot: no pruning then).
+class CentreDistances {
+ public:
+  CentreDistances(const std::vector<Segment>& boundary, double min_clearance, const Eigen::Vector2d& from, double cell)
+      : frame_(GridFrame::Covering(boundary, cell, 1.0)),
+        field_(boundary, frame_, min_clearance + 1.0),
+        from_(from) {
+    OccupancyGrid grid(frame_.nx, frame_.ny);
+    for (int iy = 0; iy < frame_.ny; ++iy)
+      for (int ix = 0; ix < frame_.nx; ++ix) grid.SetBlocked(ix, iy, field_.AtCell(ix, iy) < min_clearance - field_.Slack());
+    const GridCell source{frame_.CellX(from.x()), frame_.CellY(from.y())};
+    if (grid.Free(source.x, source.y)) distances_ = GridDistancesFrom(grid, source);
+  }
+  // m, at most the length of any path of the vehicle's centre from `from` to p.
+  double LowerBound(const Eigen::Vector2d& p) const {
+    const double straight = (p - from_).norm();
+    if (distances_.empty()) return straight;
+    const int ix = frame_.CellX(p.x()), iy = frame_.CellY(p.y());
+    if (!frame_.Contains(ix, iy)) return std::numeric_limits<double>::infinity();
+    const double cells = distances_[static_cast<size_t>(frame_.Index(ix, iy))];
+    if (!std::isfinite(cells)) return cells;
+    // 8-connected steps exceed the straight line by at most 8.2 %; the ends may lie anywhere in their cells.
+    return std::max(straight, cells * frame_.cell / 1.0823922002923940 - 2.0 * field_.Slack());
+  }
+
+ private:
+  GridFrame frame_;
+  ClearanceField field_;
+  Eigen::Vector2d from_;
+  std::vector<double> distances_;
+};
+
 bool NearAny(const Eigen::Vector2d& p, const std::vector<Pose2>& poses, double distance) {
   for (const Pose2& q : poses)
     if ((q.translation() - p).norm() < distance) return true;
@@ -106,12 +145,14 @@ std::string ValidateOptions(const SurveyPlannerOptions& o) {
   if (!std::isfinite(o.max_standoff) || o.max_standoff < o.min_standoff) return "max_standoff must be >= min_standoff";
   if (!positive(o.standoff_step)) return "standoff_step must be > 0";
   if (!std::isfinite(o.min_wall_distance) || o.min_wall_distance < 0.0) return "min_wall_distance must be >= 0";
+  if (!std::isfinite(o.station_margin) || o.station_margin < 0.0) return "station_margin must be >= 0";
   if (!std::isfinite(o.min_station_spacing) || o.min_station_spacing < 0.0) return "min_station_spacing must be >= 0";
   if (!std::isfinite(o.looked_distance) || o.looked_distance < 0.0) return "looked_distance must be >= 0";
   if (!std::isfinite(o.intersection_spacing) || o.intersection_spacing < 0.0 ||
       (o.intersection_spacing > 0.0 && o.intersection_spacing < 0.1))
     return "intersection_spacing must be 0 or at least 0.1 m";
   if (o.max_plans < 1) return "max_plans must be at least 1";
+  if (o.tries_per_frontier < 1) return "tries_per_frontier must be at least 1";
   if (o.plan_expansions < 1) return "plan_expansions must be at least 1";
   return "";
 }
@@ -131,6 +172,9 @@ void DeclareOptions(OptionScope s, SurveyPlannerOptions& o) {
   s.AddDouble("standoff_step", &o.standoff_step, "m", "grid of the candidate stations before one frontier", 0.01, 1000.0);
   s.AddDouble("min_wall_distance", &o.min_wall_distance, "m",
               "a candidate station keeps this far from every wall and frontier (scans see walls square on)", 0.0, 100.0);
+  s.AddDouble("station_margin", &o.station_margin, "m",
+              "a station's footprint keeps the request's clearance plus this from the map (room to turn a heading bin)",
+              0.0, 10.0);
   s.AddDouble("min_station_spacing", &o.min_station_spacing, "m",
               "least distance from a candidate to a visited station (and between intersections)", 0.0, 1000.0);
   s.AddDouble("looked_distance", &o.looked_distance, "m",
@@ -138,6 +182,8 @@ void DeclareOptions(OptionScope s, SurveyPlannerOptions& o) {
   s.AddDouble("intersection_spacing", &o.intersection_spacing, "m",
               "grid of the search for intersections; 0 = no intersection candidates", 0.0, 100.0);
   s.AddInt("max_plans", &o.max_plans, "path plans per decision", 1, 10000);
+  s.AddInt("tries_per_frontier", &o.tries_per_frontier,
+           "candidates planned per frontier (its best first; when they cannot be reached the rest are not tried)", 1, 10000);
   s.AddInt64("plan_expansions", &o.plan_expansions, "path planner expansions each plan may take", 1, 1'000'000'000);
 }
 
@@ -149,7 +195,7 @@ PredictedView PredictView(const TaskMap& map, const Eigen::Vector2d& position, c
   return Predict(boundary, position, options);
 }
 
-SurveyDecision PlanNextStation(const TaskMap& map, const Footprint& footprint_in, const SurveyRequest& r,
+SurveyDecision PlanNextStation(const TaskMap& map_in, const Footprint& footprint_in, const SurveyRequest& r,
                                const SurveyPlannerOptions& o, const Se2PlannerOptions& planner_options,
                                const SearchLimits& limits) {
   SurveyDecision d;
@@ -165,9 +211,12 @@ SurveyDecision PlanNextStation(const TaskMap& map, const Footprint& footprint_in
     return finish(PlanStatus::kFailed, "the vehicle pose is not finite");
   if (!std::isfinite(r.clearance) || r.clearance < 0.0)
     return finish(PlanStatus::kFailed, "clearance " + FixedNumber(r.clearance) + " m is not >= 0");
-  if (!map.oriented) return finish(PlanStatus::kFailed, "a survey needs a contour map (its frontiers), not a line map");
-  if (map.walls.empty()) return finish(PlanStatus::kFailed, "the map has no walls yet");
+  if (!map_in.oriented) return finish(PlanStatus::kFailed, "a survey needs a contour map (its frontiers), not a line map");
+  if (map_in.walls.empty()) return finish(PlanStatus::kFailed, "the map has no walls yet");
   const Footprint footprint = Normalized(footprint_in);
+  // The vehicle stands where the ladar looked from: a frontier through it is no boundary.
+  const TaskMap map = WithoutFrontiersAt(map_in, footprint, r.vehicle, r.clearance + planner_options.collision_step,
+                                         &d.frontiers_at_vehicle);
 
   Boundary boundary(map);
   const KnownFreeSpace known(map.AsFreeSpace());
@@ -175,11 +224,18 @@ SurveyDecision PlanNextStation(const TaskMap& map, const Footprint& footprint_in
   po.clearance = r.clearance;
   const Se2Planner planner(map.Boundary(), footprint, po);
   if (!planner.setup_error().empty()) return finish(PlanStatus::kFailed, "path planner: " + planner.setup_error());
+  // Stations keep station_margin more than the paths: room to turn there, and to stay free
+  // when the next scans move the walls a few centimetres.
+  Se2PlannerOptions roomy_options = po;
+  roomy_options.clearance = r.clearance + o.station_margin;
+  const Se2Planner roomy(map.Boundary(), footprint, roomy_options);
   if (!planner.PoseFree(r.vehicle))
     return finish(PlanStatus::kFailed, "the vehicle at " + PoseText(r.vehicle) + " is in collision with the map (clearance " +
                                            FixedNumber(r.clearance) + " m)");
   std::vector<Pose2> visited = r.visited;
   visited.push_back(r.vehicle);  // it has scanned where it stands
+  const CentreDistances centre(map.Boundary(), InscribedRadius(footprint) + r.clearance, r.vehicle.translation(),
+                               planner_options.field_resolution);
 
   // The frontiers worth a station: long enough, not already looked at from close by.
   for (size_t i = 0; i < map.frontiers.size(); ++i) {
@@ -212,16 +268,46 @@ SurveyDecision PlanNextStation(const TaskMap& map, const Footprint& footprint_in
                                facing - 0.5 * kPi};
   };
   std::vector<std::vector<double>> headings;  // per candidate, in order of preference
-  auto add_candidate = [&](const Eigen::Vector2d& p, int frontier, double standoff, double facing) {
+  // Candidates move to the middle of their corridor (up the clearance, 0.25 m steps, at most
+  // 2 m): a long vehicle fits there, and a scan from there sees both walls square on.
+  constexpr double kCentringCap = 5.0;  // m: clearances beyond this are all "the middle"
+  auto centred = [&](Eigen::Vector2d p) {
+    double c = Clearance(boundary, p, kCentringCap);
+    for (int step = 0; step < 8; ++step) {
+      Eigen::Vector2d best = p;
+      double best_c = c;
+      for (int k = 0; k < 8; ++k) {
+        const Eigen::Vector2d q = p + 0.25 * Eigen::Vector2d(std::cos(k * kPi / 4), std::sin(k * kPi / 4));
+        const double cq = Clearance(boundary, q, kCentringCap);
+        if (cq > best_c + 0.01) best = q, best_c = cq;
+      }
+      if (best == p) break;
+      p = best, c = best_c;
+    }
+    return p;
+  };
+  std::vector<Eigen::Vector2d> placed;  // candidate positions so far (no two within 0.5 m)
+  // A candidate from `raw`; for a frontier's (`frontier` >= 0) it must stay min_standoff to
+  // max_standoff from the frontier's `middle`, with no wall in between.
+  auto add_candidate = [&](const Eigen::Vector2d& raw, int frontier, const Eigen::Vector2d& middle, double facing) {
+    const Eigen::Vector2d p = centred(raw);
+    if (std::any_of(placed.begin(), placed.end(), [&](const Eigen::Vector2d& q) { return (q - p).norm() < 0.5; })) return;
+    placed.push_back(p);
     StationCandidate c;
     c.pose = Pose2(p.x(), p.y(), NormalizeAngle(r.vehicle.theta));
     c.frontier = frontier;
-    c.standoff = standoff;
+    if (frontier >= 0) {
+      c.standoff = (p - middle).norm();
+      if (c.standoff < o.min_standoff - 1e-9 || c.standoff > o.max_standoff + 1e-9) return;
+      if (boundary.walls.CastRayDir(p, (middle - p) / c.standoff, c.standoff)) return;  // the frontier not in sight
+    }
     if (NearAny(p, visited, o.min_station_spacing)) return;  // not a candidate at all
     if (Clearance(boundary, p, o.min_wall_distance) < o.min_wall_distance || !known.Contains(p)) return;
     c.view = Predict(boundary, p, o);
-    c.bound = (p - r.vehicle.translation()).norm() - o.area_value * c.view.new_area;
-    if (c.view.wall_rays + c.view.frontier_rays == 0) c.rejected = "sees nothing within sensor_range";
+    const double distance = centre.LowerBound(p);
+    c.bound = distance - o.area_value * c.view.new_area;
+    if (!std::isfinite(distance)) c.rejected = "not reachable (no corridor wide enough for the footprint)";
+    else if (c.view.wall_rays + c.view.frontier_rays == 0) c.rejected = "sees nothing within sensor_range";
     else if (c.view.overlap < o.min_overlap)
       c.rejected = "overlap " + FixedNumber(c.view.overlap) + " < " + FixedNumber(o.min_overlap);
     else if (c.view.new_area < o.min_new_area)
@@ -232,9 +318,9 @@ SurveyDecision PlanNextStation(const TaskMap& map, const Footprint& footprint_in
         const double heading = NormalizeAngle(h);
         const bool seen = std::any_of(free.begin(), free.end(),
                                       [&](double g) { return std::abs(NormalizeAngle(g - heading)) < 1e-6; });
-        if (!seen && planner.PoseFree(Pose2(p.x(), p.y(), heading))) free.push_back(heading);
+        if (!seen && roomy.PoseFree(Pose2(p.x(), p.y(), heading))) free.push_back(heading);
       }
-      if (free.empty()) c.rejected = "the footprint fits there at none of 6 headings";
+      if (free.empty()) c.rejected = "the footprint (with station_margin) fits there at none of 6 headings";
       else c.pose.theta = free.front(), c.feasible = true;
     }
     d.candidates.push_back(c);
@@ -254,7 +340,7 @@ SurveyDecision PlanNextStation(const TaskMap& map, const Footprint& footprint_in
         // The frontier's middle in sight: no wall before it on the way there.
         const Eigen::Vector2d p = middle + offset;
         if (boundary.walls.CastRayDir(p, -offset / standoff, standoff)) continue;
-        add_candidate(p, static_cast<int>(i), standoff, std::atan2(-offset.y(), -offset.x()));
+        add_candidate(p, static_cast<int>(i), middle, std::atan2(-offset.y(), -offset.x()));
       }
   }
 
@@ -284,7 +370,7 @@ SurveyDecision PlanNextStation(const TaskMap& map, const Footprint& footprint_in
     for (const Crossing& c : crossings) {
       if (NearAny(c.p, picked, std::max(o.min_station_spacing, 2.0 * o.intersection_spacing))) continue;
       picked.emplace_back(c.p.x(), c.p.y(), 0.0);
-      add_candidate(c.p, -1, 0.0, c.arm_bearing);
+      add_candidate(c.p, -1, c.p, c.arm_bearing);
     }
   }
 
@@ -297,10 +383,15 @@ SurveyDecision PlanNextStation(const TaskMap& map, const Footprint& footprint_in
   plan_limits.max_expansions = std::min(limits.max_expansions, o.plan_expansions);
   int untried = 0, calls = 0;
   bool stopped = false;
+  std::map<int, int> tried_at;  // candidates planned per frontier (-1: the intersections)
   for (const size_t k : order) {
     StationCandidate& c = d.candidates[k];
     if (d.chosen && c.bound >= d.candidates[*d.chosen].cost) {
       c.rejected = "cannot beat the chosen station";
+      continue;
+    }
+    if (tried_at[c.frontier] >= o.tries_per_frontier) {
+      c.rejected = "not planned (tries_per_frontier)";
       continue;
     }
     if (d.plans >= o.max_plans || calls >= 10 * o.max_plans || stopped) {
@@ -309,6 +400,7 @@ SurveyDecision PlanNextStation(const TaskMap& map, const Footprint& footprint_in
       continue;
     }
     c.planned = true;
+    ++tried_at[c.frontier];
     std::string why;
     bool reached = false;
     for (const double h : headings[k]) {

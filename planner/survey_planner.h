@@ -12,8 +12,9 @@
 //                 still open is a gap the ladar cannot close (out of range, a crack): dropped.
 //   candidates    (a) before each frontier: the points of a square grid (standoff_step) about
 //                 its middle, on its free side, min_standoff to max_standoff from the middle,
-//                 in the known free space, at least min_wall_distance from walls and
-//                 frontiers, with no wall between them and the middle (a long
+//                 moved up the clearance to the middle of their corridor (at most 2 m), in the
+//                 known free space, at least min_wall_distance from walls and frontiers,
+//                 with no wall between them and the frontier's middle (a long
 //                 vehicle needs room before a frontier across its entry: the grid reaches
 //                 down the entry as well as across it); (b) at intersections: points of a grid
 //                 (intersection_spacing) in the known free space from which rays open into at
@@ -31,12 +32,20 @@
 //                 (>= min_new_area).
 //   reachable     the path planner (Se2Planner on walls + frontiers: the known free space
 //                 only, the request's footprint and clearance) from the vehicle's pose; the
-//                 candidate's heading is the first free of: the vehicle's heading, its
-//                 opposite, facing the frontier (or the arms), its opposite and square to it.
+//                 candidate's heading is the first of: the vehicle's heading, its opposite,
+//                 facing the frontier (or the arms), its opposite and square to it, where the
+//                 footprint keeps clearance + station_margin (room to turn there again).
 //   cost          path cost (m: the planner's cost, metres with reversing and cusps priced)
-//                 - area_value x new area (m per m^2). Candidates are planned in order of the
-//                 straight-line lower bound of the cost; planning stops when no unplanned
-//                 candidate's bound can beat the best cost found, or after max_plans plans.
+//                 - area_value x new area (m per m^2). Candidates are planned in order of a
+//                 lower bound of the cost (the path length bound: a 2-D Dijkstra over the cells
+//                 where the vehicle's centre fits, as the planner's own heuristic; a candidate
+//                 no such corridor reaches is not reachable without a plan); planning stops when
+//                 no unplanned candidate's bound can beat the best cost found. At most
+//                 tries_per_frontier candidates planned per frontier (its best: if they cannot be
+//                 reached the others are taken as unreachable too) and max_plans per decision;
+//                 a plan that needs more than plan_expansions is "not reachable".
+//   the vehicle   a frontier through the vehicle's own footprint is dropped: it stands where
+//                 the ladar looked from (WithoutFrontiersAt).
 //
 // No candidate reachable and no frontier left that a station could still close: COMPLETE,
 // with the reason ("no reachable frontier: 3 frontiers left, none reachable: ..."). Plans
@@ -74,11 +83,16 @@ struct SurveyPlannerOptions {
   // m: a candidate at least this far from every wall and frontier (a scan from the middle of
   // an entry sees its walls square on; one hugging a wall sees it edge-on). Default 1.5.
   double min_wall_distance = 1.5;
+  // m: at a station the footprint keeps the request's clearance plus this from walls and
+  // frontiers: the 10 m miner's ends swing 0.44 m when it turns one of the path planner's
+  // 5-degree heading bins, and the next scans move the walls a few centimetres. Default 0.45.
+  double station_margin = 0.45;
   double min_station_spacing = 3.0;   // m between a candidate and any visited station (and between intersections). Default 3.
   double looked_distance = 4.0;       // m: a frontier a visited station saw from this near and still open is dropped. Default 4.
   double intersection_spacing = 1.0;  // m, grid of the intersection search; 0 = no intersection candidates. Default 1.
-  int max_plans = 12;                 // path plans per decision. Default 12.
-  int64_t plan_expansions = 50'000;   // expansions each plan may take. Default 50,000.
+  int max_plans = 24;                 // path plans per decision. Default 24.
+  int tries_per_frontier = 2;         // candidates planned per frontier (the intersections count as one). Default 2.
+  int64_t plan_expansions = 20'000;   // expansions each plan may take. Default 20,000.
 };
 
 // "" when usable, else one line naming the option.
@@ -125,6 +139,7 @@ struct SurveyDecision {
   std::vector<StationCandidate> candidates;
   std::optional<size_t> chosen;            // index into candidates
   PlannedPath path;                        // from the vehicle to the chosen station
+  int frontiers_at_vehicle = 0;            // frontiers through the vehicle's footprint (dropped)
   int plans = 0;                           // path plans made
   int64_t expansions = 0;                  // their expansions
 };

@@ -16,6 +16,7 @@
 #include "common/pose2.h"
 #include "mapper/contour.h"
 #include "planner/contour_free_space.h"
+#include "planner/footprint.h"
 
 namespace minenav {
 
@@ -88,6 +89,13 @@ struct TaskMap {
   std::vector<Segment> Boundary() const;
   ContourFreeSpace AsFreeSpace() const { return {walls, frontiers, 0, 0}; }
 };
+
+// The map without the frontiers that come within `margin` of the footprint at `pose`: the
+// vehicle stands where the ladar has looked from, so a frontier through it is not the edge of
+// what the ladar saw (MakeContourFreeSpace's pairing of contour ends can draw one along a
+// wall across a crossing). `dropped` (may be null) counts them.
+TaskMap WithoutFrontiersAt(const TaskMap& map, const Footprint& footprint, const Pose2& pose, double margin,
+                           int* dropped = nullptr);
 
 // The walls and frontiers of a contour map (MakeContourFreeSpace).
 TaskMap TaskMapFromContours(const std::vector<mapper::Contour>& contours, const FreeSpaceOptions& options = {});
