@@ -192,17 +192,13 @@ AdvanceResult PlanAdvance(const TaskMap& map_in, const Footprint& footprint_in, 
     t.face = Segment(e.FacePoint(0.0, c.y() - half_drum), e.FacePoint(0.0, c.y() + half_drum));
     plan.tasks.push_back(std::move(t));
   }
-  // Back out: squared to the face still (straight back out of the cut), centred between the
-  // ribs over the vehicle's length there, the drum bolter_gap behind the advanced face.
+  // Back out: back out of the last cut along the entry's axis (straight back when the face is
+  // square; squared to the face still), the drum bolter_gap behind the advanced face.
   const double x_back = r.depth - o.bolter_gap - o.reach;
   if (x_back >= nearest_cut)
     return fail("bolter_gap " + FixedNumber(o.bolter_gap) + " m does not take the vehicle back from the cuts (depth " +
                 FixedNumber(r.depth) + " m)");
-  const double x_e_back = x_back / cos_face;
-  const double y_back = 0.5 * (e.LeftLimit(x_e_back + ex_min, x_e_back + ex_max) +
-                               e.RightLimit(x_e_back + ex_min, x_e_back + ex_max)) -
-                        0.5 * (ey_hi + ey_lo);
-  const Eigen::Vector2d b = centre_at(y_back, x_back);
+  const Eigen::Vector2d b = centre_at(slots.back().y, x_back);
   Task back = MakeTask(TaskKind::kBackOut, e.FacePose(b.x(), b.y()), Appendages::kStowed,
                        "back out for the roof bolter: drum " + FixedNumber(o.bolter_gap) + " m from the advanced face");
   back.clearance = r.clearance;

@@ -20,14 +20,16 @@
 //             maneuver; checked from the box cut's MOVE pose: the vehicle trams straight
 //             back out of the cut it just made);                                  STOWED
 //   SLAB_CUT  the rest of the entry's width, same depth;                          CUTTING
-//   BACK_OUT  centred in the entry, the drum's front bolter_gap behind the advanced face,
-//             reversing allowed;                                                  STOWED
+//   BACK_OUT  back out of the last cut along the entry's axis (straight back when the face
+//             is square), squared to the face still, the drum's front bolter_gap behind the
+//             advanced face, reversing allowed;                                   STOWED
 //
 // each depending on the one before. An entry wider than the box cut and one slab cut can
 // cover (two drum widths plus the margins) gets more slab cuts, evenly spaced; one whose
 // width leaves no room beside the box cut gets the box cut alone, centred (and when it is
 // narrower than the drum, the box cut is the whole width: the plan's reason says so).
-// Between the ribs the cuts leave clearance + side_margin uncut on each side.
+// Between the ribs the cuts leave clearance + side_margin uncut on each side (0.55 m with the
+// defaults: the room the path planner needs to turn the 10 m miner one heading bin there).
 //
 // Every driving goal is checked: in the known free space (contour maps), and reachable by
 // the path planner (Se2Planner on the same map: walls and frontiers, the same footprint and
@@ -57,8 +59,12 @@ struct AdvanceOptions {
   double reach = CutterOptions{}.reach;         // m, vehicle pose to the drum's front (the cutter's cutter.reach). Default 5.
   double drum_width = CutterOptions{}.width;    // m, the drum's width (the cutter's cutter.width). Default 3.3.
   double standoff = CutterOptions{}.standoff;   // m, drum front to face where a cut starts (the cutter's cutter.standoff). Default 0.1.
-  // m between the vehicle's side (or the drum's end) and a rib at a cut, beyond the clearance. Default 0.1.
-  double side_margin = 0.1;
+  // m between the vehicle's side (or the drum's end) and a rib at a cut, beyond the clearance:
+  // room to turn. The path planner turns in heading bins (5 degrees by default) and the 10 m
+  // miner's ends swing 0.44 m for one bin: with less, a vehicle beside a rib can only drive
+  // straight along it, and the reposition to the other rib has no path unless a crossing
+  // behind gives room. The cuts leave clearance + side_margin of coal at each rib. Default 0.45.
+  double side_margin = 0.45;
   // m behind the vehicle at a cut over which the rib's nearest point counts: the vehicle can
   // back this far straight out of its cutting position. Default 10.
   double approach_length = 10.0;

@@ -20,7 +20,8 @@
 namespace minenav {
 namespace {
 
-constexpr double kReach = 5.0, kDrum = 3.3, kStandoff = 0.1, kMargin = 0.1;
+constexpr double kReach = 5.0, kDrum = 3.3, kStandoff = 0.1;
+const double kMargin = AdvanceOptions{}.side_margin;  // 0.45 m
 
 // The closed polygon's edges split into pieces of at most `piece` m, each inner vertex moved
 // across its edge by a uniform value in [-jitter, jitter]: walls as a mine has them.
@@ -153,8 +154,13 @@ void ExpectAdvancePlan(const std::vector<Segment>& walls, const AdvanceRequest& 
       EXPECT_EQ(t.appendages, Appendages::kStowed);
       EXPECT_TRUE(t.allow_reverse);
       EXPECT_GE(clearance, request.clearance);
-      // The drum bolter_gap behind the advanced face.
+      // The drum bolter_gap behind the advanced face, back from the last cut along the entry's
+      // axis (straight back when the face is square), still squared to the face.
       EXPECT_NEAR(to_face + request.depth, AdvanceOptions{}.bolter_gap, 2.0 * jitter + 0.05);
+      const Pose2 to_entry = result.entry->entry_frame.inverse();
+      const Pose2& last_cut = plan.tasks[k - 1].target;
+      EXPECT_NEAR((to_entry * t.target).y, (to_entry * last_cut).y, 1e-6);
+      EXPECT_NEAR(NormalizeAngle(t.target.theta - last_cut.theta), 0.0, 1e-9);
     }
   }
   if (expected_total_width > 0.0) {
@@ -357,24 +363,34 @@ TEST(AdvancePlanner, AGoalThePathPlannerCannotReachFailsThePlanWithItsReason) {
   EXPECT_NE(t.plan.reason.find("move into position for the box cut"), std::string::npos) << t.plan.reason;
 }
 
-TEST(AdvancePlanner, ADeadEndWithoutACrosscutLeavesNoRoomToRepositionAndSaysSo) {
-  // The miner at the right rib with 0.2 m to spare cannot turn a heading bin (its far end
-  // swings 0.44 m for 5 degrees): it can only back straight out, and a dead end 40 m long
-  // and 6.5 m wide has nowhere to shift sideways. The path planner's answer is the reason.
+TEST(AdvancePlanner, ARibHuggingBoxCutInADeadEndLeavesNoRoomToReposition) {
+  // With 0.1 m beyond the clearance at the rib (0.2 m to spare) the miner cannot turn a
+  // heading bin (its far end swings 0.44 m for 5 degrees): it can only back straight out, and
+  // a dead end 40 m long and 6.5 m wide has nowhere to shift sideways. The path planner's
+  // answer is the reason.
   Entry entry{6.5};
   entry.dead_end = true;
+  AdvanceOptions hugging;
+  hugging.side_margin = 0.1;
   const AdvanceResult r = PlanAdvance(TaskMapFromSegments(entry.Walls()), Miner(),
-                                      Request({entry.length - 22.0, 0, 0}, {entry.length - 4.0, 0}, 0.0), {}, {});
+                                      Request({entry.length - 22.0, 0, 0}, {entry.length - 4.0, 0}, 0.0), hugging, {});
   EXPECT_EQ(r.plan.status, PlanStatus::kFailed);
   EXPECT_EQ(r.plan.reason.rfind("reposition for slab cut 1: goal (", 0), 0u) << r.plan.reason;
   EXPECT_NE(r.plan.reason.find("is not reachable from ("), std::string::npos) << r.plan.reason;
   EXPECT_EQ(r.maneuvers.size(), 2u);
-  // With the margin to turn (0.45 m beyond the clearance) it can, at the cost of width.
-  AdvanceOptions roomy;
-  roomy.side_margin = 0.45;
+  // With the default margin (0.45 m: room to turn a bin) it can, at the cost of width; and
+  // with a crosscut behind the face even hugging the rib works (the test above with margin 0.1).
   const AdvanceResult wide = PlanAdvance(TaskMapFromSegments(entry.Walls()), Miner(),
-                                         Request({entry.length - 22.0, 0, 0}, {entry.length - 4.0, 0}, 0.0), roomy, {});
+                                         Request({entry.length - 22.0, 0, 0}, {entry.length - 4.0, 0}, 0.0), {}, {});
   EXPECT_EQ(wide.plan.status, PlanStatus::kOk) << wide.plan.reason;
+  ExpectAdvancePlan(entry.Walls(), Request({entry.length - 22.0, 0, 0}, {entry.length - 4.0, 0}, 0.0), wide,
+                    entry.FacePoint(), entry.FaceNormal(), entry.jitter, 1, -1.0);
+  AdvanceOptions hugging_crosscut = hugging;
+  Entry with_crosscut{6.5};
+  const AdvanceResult hug = PlanAdvance(TaskMapFromSegments(with_crosscut.Walls()), Miner(),
+                                        Request({with_crosscut.length - 22.0, 0, 0}, {with_crosscut.length - 4.0, 0}, 0.0),
+                                        hugging_crosscut, {});
+  EXPECT_EQ(hug.plan.status, PlanStatus::kOk) << hug.plan.reason;
 }
 
 TEST(AdvancePlanner, BadRequestsAndOptionsAreRefusedInOneLine) {

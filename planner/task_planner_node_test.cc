@@ -140,7 +140,7 @@ TEST(TaskPlannerNode, AnAdvanceIsAnsweredWithTheCutsTaggedWithItsIdAndEveryManeu
   ASSERT_EQ(p.plan.status, PlanStatus::kOk) << p.plan.reason;
   EXPECT_EQ(Kinds(p.plan), (std::vector<TaskKind>{TaskKind::kMove, TaskKind::kBoxCut, TaskKind::kMove,
                                                   TaskKind::kSlabCut, TaskKind::kBackOut}));
-  EXPECT_EQ(p.plan.reason.rfind("advance the 6.50 m entry 1.00 m: box cut 3.30 m on the right, 1 slab cut of 2.80 m", 0), 0u)
+  EXPECT_EQ(p.plan.reason.rfind("advance the 6.50 m entry 1.00 m: box cut 3.30 m on the right, 1 slab cut of 2.10 m", 0), 0u)
       << p.plan.reason;
   for (size_t k = 0; k < p.plan.tasks.size(); ++k) EXPECT_EQ(p.plan.tasks[k].depends_on, k == 0 ? -1 : static_cast<int64_t>(k));
   EXPECT_EQ(p.plan.tasks[1].appendages, Appendages::kCutting);
