@@ -36,7 +36,8 @@ int Run(int argc, char** argv) {
   double range = 20.0;
   std::string only, svg_out, json_out;
   int svg_step = 3;
-  std::string svg_all;
+  std::string svg_all, scenario_filter;
+  int first_seed = 1;
   bool verbose = false;
   ConfigSchema schema("task_planner_bench", "Surveys of generated mines and plans to advance their entries.");
   schema.AddInt("seeds", &seeds, "mines per scenario (generator seeds 1..n)", 1, 100);
@@ -45,6 +46,8 @@ int Run(int argc, char** argv) {
   schema.AddString("svg_out", &svg_out, "write PREFIX_survey.svg (a decision of the first survey) and PREFIX_advance.svg");
   schema.AddInt("svg_step", &svg_step, "the decision of the first survey drawn by --svg_out", 1, 1000);
   schema.AddString("svg_all", &svg_all, "write every decision of every survey as PREFIX_<scenario>_<seed>_<n>.svg (debugging)");
+  schema.AddString("scenario", &scenario_filter, "only the survey scenarios whose name contains this");
+  schema.AddInt("first_seed", &first_seed, "the first generator seed", 1, 1000000);
   schema.AddBool("verbose", &verbose, "print every decision (time, plans, expansions, reason)");
   schema.AddString("json_out", &json_out, "write the results as JSON to this file ('' = none)");
   if (schema.Parse(argc, argv) == ParseOutcome::kExit) return 0;
@@ -61,7 +64,8 @@ int Run(int argc, char** argv) {
                 "explored", "true", "cover", "dec.med", "dec.max", "end", "why it ended");
     std::printf("%-17s %4s | %8s %7s %8s %8s %7s %7s %7s |\n", "", "", "", "m", "m^2", "m^2", "%", "ms", "ms");
     for (const SurveyScenario& sc : scenarios) {
-      for (int seed = 1; seed <= seeds; ++seed) {
+      if (sc.name.find(scenario_filter) == std::string::npos) continue;
+      for (int seed = first_seed; seed < first_seed + seeds; ++seed) {
         MineOptions mine;
         mine.pillar_rows = sc.rows;
         mine.pillar_cols = sc.cols;

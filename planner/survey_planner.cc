@@ -17,6 +17,9 @@
 namespace minenav {
 namespace {
 
+// m: clearances beyond this are all "the middle of the corridor" (candidates are moved up the
+// clearance until it stops growing or reaches this).
+constexpr double kCentringCap = 5.0;
 // Rays that decide how many arms open from an intersection candidate.
 constexpr int kArmRays = 16;
 // An intersection needs this many arms.
@@ -263,14 +266,28 @@ SurveyDecision PlanNextStation(const TaskMap& map_in, const Footprint& footprint
   }
 
   // Candidates before each open frontier.
-  auto headings_for = [&](double facing) {
-    return std::vector<double>{r.vehicle.theta, r.vehicle.theta + kPi, facing, facing + kPi, facing + 0.5 * kPi,
-                               facing - 0.5 * kPi};
+  // The headings a station may have, in order of preference: the vehicle's (no turn), its
+  // opposite, along the nearest wall both ways (a corridor's axis: a long vehicle fits there),
+  // facing the frontier or arm, its opposite and square to it.
+  auto headings_for = [&](const Eigen::Vector2d& p, double facing) {
+    std::vector<double> h = {r.vehicle.theta, r.vehicle.theta + kPi};
+    double nearest = std::numeric_limits<double>::infinity();
+    Eigen::Vector2d along = Eigen::Vector2d::Zero();
+    boundary.walls.ForEachNear(p, kCentringCap, [&](int i) {
+      const Segment& w = boundary.walls.segments()[static_cast<size_t>(i)];
+      const double dw = PointToSegmentDistance(p, w);
+      if (dw < nearest && w.length() > 0.0) nearest = dw, along = w.direction();
+    });
+    if (nearest < kCentringCap) {
+      h.push_back(std::atan2(along.y(), along.x()));
+      h.push_back(std::atan2(along.y(), along.x()) + kPi);
+    }
+    for (const double a : {0.0, kPi, 0.5 * kPi, -0.5 * kPi}) h.push_back(facing + a);
+    return h;
   };
   std::vector<std::vector<double>> headings;  // per candidate, in order of preference
   // Candidates move to the middle of their corridor (up the clearance, 0.25 m steps, at most
   // 2 m): a long vehicle fits there, and a scan from there sees both walls square on.
-  constexpr double kCentringCap = 5.0;  // m: clearances beyond this are all "the middle"
   auto centred = [&](Eigen::Vector2d p) {
     double c = Clearance(boundary, p, kCentringCap);
     for (int step = 0; step < 8; ++step) {
@@ -314,13 +331,13 @@ SurveyDecision PlanNextStation(const TaskMap& map_in, const Footprint& footprint
       c.rejected = "new area " + FixedNumber(c.view.new_area, 1) + " < " + FixedNumber(o.min_new_area, 1) + " m^2";
     std::vector<double> free;
     if (c.rejected.empty()) {
-      for (const double h : headings_for(facing)) {
+      for (const double h : headings_for(p, facing)) {
         const double heading = NormalizeAngle(h);
         const bool seen = std::any_of(free.begin(), free.end(),
                                       [&](double g) { return std::abs(NormalizeAngle(g - heading)) < 1e-6; });
         if (!seen && roomy.PoseFree(Pose2(p.x(), p.y(), heading))) free.push_back(heading);
       }
-      if (free.empty()) c.rejected = "the footprint (with station_margin) fits there at none of 6 headings";
+      if (free.empty()) c.rejected = "the footprint (with station_margin) fits there at no heading tried";
       else c.pose.theta = free.front(), c.feasible = true;
     }
     d.candidates.push_back(c);

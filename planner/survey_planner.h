@@ -33,8 +33,10 @@
 //   reachable     the path planner (Se2Planner on walls + frontiers: the known free space
 //                 only, the request's footprint and clearance) from the vehicle's pose; the
 //                 candidate's heading is the first of: the vehicle's heading, its opposite,
-//                 facing the frontier (or the arms), its opposite and square to it, where the
-//                 footprint keeps clearance + station_margin (room to turn there again).
+//                 along the nearest wall both ways (the corridor's axis), facing the frontier
+//                 (or the arms), its opposite and square to it, where the footprint keeps
+//                 clearance + station_margin (room to turn there again); the others follow
+//                 when the first cannot be reached.
 //   cost          path cost (m: the planner's cost, metres with reversing and cusps priced)
 //                 - area_value x new area (m per m^2). Candidates are planned in order of a
 //                 lower bound of the cost (the path length bound: a 2-D Dijkstra over the cells
@@ -92,7 +94,7 @@ struct SurveyPlannerOptions {
   double intersection_spacing = 1.0;  // m, grid of the intersection search; 0 = no intersection candidates. Default 1.
   int max_plans = 24;                 // path plans per decision. Default 24.
   int tries_per_frontier = 2;         // candidates planned per frontier (the intersections count as one). Default 2.
-  int64_t plan_expansions = 20'000;   // expansions each plan may take. Default 20,000.
+  int64_t plan_expansions = 40'000;   // expansions each plan may take. Default 40,000.
 };
 
 // "" when usable, else one line naming the option.
