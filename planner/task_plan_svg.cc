@@ -1,6 +1,7 @@
 #include "planner/task_plan_svg.h"
 
 #include <algorithm>
+#include <iterator>
 #include <cmath>
 #include <vector>
 
@@ -66,9 +67,24 @@ SvgScene SurveyScene(const TaskMap& map, const Footprint& footprint, const Surve
 
 SvgScene AdvanceScene(const TaskMap& map, const Footprint& footprint, const AdvanceRequest& request,
                       const AdvanceResult& result, const std::string& title) {
-  const ContourFreeSpace space = map.AsFreeSpace();
-  SvgScene scene = PathScene(map.Boundary(), footprint, PlannedPath{request.vehicle, {}}, title,
-                             map.oriented ? &space : nullptr);
+  // The walls near the way to the face (kWindow m about the hint and the vehicle): the entry,
+  // not the whole mine.
+  constexpr double kWindow = 25.0;
+  auto near = [&](const Segment& s) {
+    for (const Eigen::Vector2d& c : {request.face_hint, request.vehicle.translation()})
+      if ((s.a - c).cwiseAbs().maxCoeff() < kWindow || (s.b - c).cwiseAbs().maxCoeff() < kWindow) return true;
+    return false;
+  };
+  TaskMap window;
+  window.oriented = map.oriented;
+  std::copy_if(map.walls.begin(), map.walls.end(), std::back_inserter(window.walls), near);
+  std::copy_if(map.frontiers.begin(), map.frontiers.end(), std::back_inserter(window.frontiers), near);
+  const ContourFreeSpace space = window.AsFreeSpace();
+  SvgScene scene = PathScene(window.Boundary(), footprint, PlannedPath{request.vehicle, {}}, title,
+                             window.oriented ? &space : nullptr);
+  std::erase_if(scene.trajectories, [](const SvgTrajectory& t) { return t.poses.size() < 2; });  // no path of its own
+  std::erase_if(scene.lines, [](const SvgLineLayer& l) { return l.label == "footprint"; });
+  scene.lines.push_back({"the vehicle", "#7f7f7f", 1.2, {}, {Outline(footprint, request.vehicle)}});
   if (result.entry) {
     const EntryGeometry& e = *result.entry;
     scene.lines.push_back({"face found", "#8c564b", 3.0, {e.face}, {}});
