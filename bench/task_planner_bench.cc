@@ -43,9 +43,11 @@ int Run(int argc, char** argv) {
   schema.AddInt("seeds", &seeds, "mines per scenario (generator seeds 1..n)", 1, 100);
   schema.AddDouble("range", &range, "m", "the ladar's range (the scans and the planner's prediction)", 5.0, 100.0);
   schema.AddString("only", &only, "survey or advance ('' = both)");
-  schema.AddString("svg_out", &svg_out, "write PREFIX_survey.svg (a decision of the first survey) and PREFIX_advance.svg");
+  schema.AddString("svg_out", &svg_out,
+                   "write PREFIX_survey.svg (a decision of the first survey) and PREFIX_advance.svg");
   schema.AddInt("svg_step", &svg_step, "the decision of the first survey drawn by --svg_out", 1, 1000);
-  schema.AddString("svg_all", &svg_all, "write every decision of every survey as PREFIX_<scenario>_<seed>_<n>.svg (debugging)");
+  schema.AddString("svg_all", &svg_all,
+                   "write every decision of every survey as PREFIX_<scenario>_<seed>_<n>.svg (debugging)");
   schema.AddString("scenario", &scenario_filter, "only the survey scenarios whose name contains this");
   schema.AddInt("first_seed", &first_seed, "the first generator seed", 1, 1000000);
   schema.AddBool("verbose", &verbose, "print every decision (time, plans, expansions, reason)");
@@ -81,7 +83,8 @@ int Run(int argc, char** argv) {
         o.survey.sensor_range = range;
         o.max_stations = 60;
         const testing::SurveyExplorationResult r = testing::ExploreBySurvey(
-            GenerateRoomAndPillarMine(mine), o, [&](const testing::SurveyStep& step, const testing::SurveySimulation& sim) {
+            GenerateRoomAndPillarMine(mine), o,
+            [&](const testing::SurveyStep& step, const testing::SurveySimulation& sim) {
               if (verbose)
                 std::printf("  decision %d: %.1f ms, %d plans, %lld expansions, %zu candidates: %s\n", step.index,
                             1e3 * step.seconds, step.decision.plans, static_cast<long long>(step.decision.expansions),
@@ -89,13 +92,13 @@ int Run(int argc, char** argv) {
               if (!svg_all.empty()) {
                 std::string tag = sc.name;
                 for (char& c : tag) c = c == ' ' ? '_' : c;
-                SvgScene scene = SurveyScene(step.map, sc.footprint, step.request, step.decision,
-                                             sc.name + " seed " + std::to_string(seed) + " decision " +
-                                                 std::to_string(step.index));
+                SvgScene scene =
+                    SurveyScene(step.map, sc.footprint, step.request, step.decision,
+                                sc.name + " seed " + std::to_string(seed) + " decision " + std::to_string(step.index));
                 scene.lines.insert(scene.lines.begin(), SvgLineLayer{"true walls", "#cccccc", 4.0, sim.truth(), {}});
-                WriteFileAtomically(svg_all + "_" + tag + "_" + std::to_string(seed) + "_" +
-                                        std::to_string(step.index) + ".svg",
-                                    RenderSvg(scene));
+                WriteFileAtomically(
+                    svg_all + "_" + tag + "_" + std::to_string(seed) + "_" + std::to_string(step.index) + ".svg",
+                    RenderSvg(scene));
               }
               if (svg_out.empty() || seed != 1 || &sc != &scenarios.front() || step.index != svg_step) return;
               SvgScene scene = SurveyScene(step.map, sc.footprint, step.request, step.decision,
@@ -108,11 +111,17 @@ int Run(int argc, char** argv) {
                     bench::Median(r.decision_ms), bench::Max(r.decision_ms), Status(r.final_status).c_str(),
                     r.final_reason.c_str());
         std::fflush(stdout);
-        survey_rows.push_back({{"scenario", sc.name}, {"seed", seed}, {"stations", r.stations},
-                               {"driven_m", r.path_length}, {"explored_m2", r.known_free_m2},
-                               {"true_free_m2", r.true_free_m2}, {"known_not_free_m2", r.known_not_free_m2},
-                               {"coverage", r.Coverage()}, {"decision_ms", r.decision_ms},
-                               {"status", Status(r.final_status)}, {"reason", r.final_reason},
+        survey_rows.push_back({{"scenario", sc.name},
+                               {"seed", seed},
+                               {"stations", r.stations},
+                               {"driven_m", r.path_length},
+                               {"explored_m2", r.known_free_m2},
+                               {"true_free_m2", r.true_free_m2},
+                               {"known_not_free_m2", r.known_not_free_m2},
+                               {"coverage", r.Coverage()},
+                               {"decision_ms", r.decision_ms},
+                               {"status", Status(r.final_status)},
+                               {"reason", r.final_reason},
                                {"refused_scans", r.refused_scans.size()}});
       }
     }
@@ -162,17 +171,26 @@ int Run(int argc, char** argv) {
             SvgScene scene = AdvanceScene(map, miner, request, r, "advancing the middle entry of a 2 x 3 pillar mine");
             WriteFileAtomically(svg_out + "_advance.svg", RenderSvg(scene));
           }
-          advance_rows.push_back({{"room_width", width}, {"seed", seed}, {"entry", entry},
-                                  {"status", Status(r.plan.status)}, {"slabs", slabs}, {"cut_width_m", cut},
-                                  {"maneuvers_m", driven}, {"ms", ms}, {"reason", r.plan.reason}});
+          advance_rows.push_back({{"room_width", width},
+                                  {"seed", seed},
+                                  {"entry", entry},
+                                  {"status", Status(r.plan.status)},
+                                  {"slabs", slabs},
+                                  {"cut_width_m", cut},
+                                  {"maneuvers_m", driven},
+                                  {"ms", ms},
+                                  {"reason", r.plan.reason}});
         }
       }
     }
     std::printf("planned %d of %d; time per plan median %.1f ms, max %.1f ms (thread CPU)\n", planned, total,
                 bench::Median(ms_all), bench::Max(ms_all));
   }
-  bench::WriteJson(json_out, {{"bench", "task_planner_bench"}, {"seeds", seeds}, {"range_m", range},
-                              {"surveys", survey_rows}, {"advances", advance_rows}});
+  bench::WriteJson(json_out, {{"bench", "task_planner_bench"},
+                              {"seeds", seeds},
+                              {"range_m", range},
+                              {"surveys", survey_rows},
+                              {"advances", advance_rows}});
   return 0;
 }
 

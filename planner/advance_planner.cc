@@ -65,11 +65,13 @@ std::string ValidateOptions(const AdvanceOptions& o) {
 void DeclareOptions(OptionScope s, AdvanceOptions& o) {
   s.AddDouble("reach", &o.reach, "m", "vehicle pose to the drum's front (the cutter's cutter.reach)", 0.1, 50.0);
   s.AddDouble("drum_width", &o.drum_width, "m", "the drum's width (the cutter's cutter.width)", 0.1, 20.0);
-  s.AddDouble("standoff", &o.standoff, "m", "drum front to face where a cut starts (the cutter's cutter.standoff)", 0.0, 5.0);
+  s.AddDouble("standoff", &o.standoff, "m", "drum front to face where a cut starts (the cutter's cutter.standoff)", 0.0,
+              5.0);
   s.AddDouble("side_margin", &o.side_margin, "m",
               "between the vehicle's side (or the drum's end) and a rib at a cut, beyond the clearance", 0.0, 5.0);
   s.AddDouble("approach_length", &o.approach_length, "m",
-              "the ribs' nearest point counts this far behind the vehicle at a cut (it backs straight out)", 0.0, 100.0);
+              "the ribs' nearest point counts this far behind the vehicle at a cut (it backs straight out)", 0.0,
+              100.0);
   s.AddString("box_cut_side", &o.box_cut_side, "side of the entry (looking at the face) the box cut goes to",
               {"right", "left"});
   s.AddDouble("bolter_gap", &o.bolter_gap, "m",
@@ -82,7 +84,8 @@ void DeclareOptions(OptionScope s, AdvanceOptions& o) {
 }
 
 AdvanceResult PlanAdvance(const TaskMap& map_in, const Footprint& footprint_in, const AdvanceRequest& r,
-                          const AdvanceOptions& o, const Se2PlannerOptions& planner_options, const SearchLimits& limits) {
+                          const AdvanceOptions& o, const Se2PlannerOptions& planner_options,
+                          const SearchLimits& limits) {
   AdvanceResult result;
   TaskPlan& plan = result.plan;
   auto fail = [&](const std::string& why) {
@@ -97,7 +100,8 @@ AdvanceResult PlanAdvance(const TaskMap& map_in, const Footprint& footprint_in, 
     return fail("the vehicle pose is not finite");
   if (!std::isfinite(r.depth) || r.depth <= 0.0 || r.depth > o.max_depth)
     return fail("depth " + FixedNumber(r.depth) + " m is not in (0, " + FixedNumber(o.max_depth) + "] (max_depth)");
-  if (!std::isfinite(r.clearance) || r.clearance < 0.0) return fail("clearance " + FixedNumber(r.clearance) + " m is not >= 0");
+  if (!std::isfinite(r.clearance) || r.clearance < 0.0)
+    return fail("clearance " + FixedNumber(r.clearance) + " m is not >= 0");
   const Footprint footprint = Normalized(footprint_in);
   const BodyExtent body = ExtentOf(footprint);
   // The vehicle stands where the ladar looked from: a frontier through it is no boundary.
@@ -127,8 +131,8 @@ AdvanceResult PlanAdvance(const TaskMap& map_in, const Footprint& footprint_in, 
   auto centre_at = [&](double y_e, double x_f) {
     return e.EntryToFace(Eigen::Vector2d((x_f - sin_face * y_e) / cos_face, y_e));
   };
-  const double gap = o.standoff + r.clearance;         // drum front to face at a MOVE's goal
-  const double side_gap = r.clearance + o.side_margin;  // vehicle to rib at a cut
+  const double gap = o.standoff + r.clearance;               // drum front to face at a MOVE's goal
+  const double side_gap = r.clearance + o.side_margin;       // vehicle to rib at a cut
   const double half = std::max(body.half_width, half_drum);  // face frame: what meets the face across
 
   // The room between the ribs over the vehicle's length at a cut and approach_length behind it
@@ -148,10 +152,11 @@ AdvanceResult PlanAdvance(const TaskMap& map_in, const Footprint& footprint_in, 
   std::string layout;
   if (span <= 1e-6) {
     slots.push_back({0.5 * (left + right) - 0.5 * (ey_hi + ey_lo), std::min(o.drum_width, room)});
-    layout = room < o.drum_width ? "the entry (" + FixedNumber(room) + " m at the face) is narrower than the drum (" +
-                                       FixedNumber(o.drum_width) + " m): the box cut is the whole width, no slab cut"
-                                 : "the entry (" + FixedNumber(room) + " m at the face) leaves no room beside the box cut (" +
-                                       FixedNumber(o.drum_width) + " m, centred): no slab cut";
+    layout = room < o.drum_width
+                 ? "the entry (" + FixedNumber(room) + " m at the face) is narrower than the drum (" +
+                       FixedNumber(o.drum_width) + " m): the box cut is the whole width, no slab cut"
+                 : "the entry (" + FixedNumber(room) + " m at the face) leaves no room beside the box cut (" +
+                       FixedNumber(o.drum_width) + " m, centred): no slab cut";
   } else {
     const int slabs = static_cast<int>(std::ceil(span / o.drum_width - 1e-9));
     if (slabs > o.max_slab_cuts)

@@ -46,8 +46,8 @@
 #include "common/pose2.h"
 #include "planner/entry_geometry.h"
 #include "planner/footprint.h"
-#include "planner/search_limits.h"
 #include "planner/se2_planner.h"
+#include "planner/search_limits.h"
 #include "planner/task.h"
 #include "tracker/cutter.h"
 
@@ -56,9 +56,10 @@ namespace minenav {
 class OptionScope;
 
 struct AdvanceOptions {
-  double reach = CutterOptions{}.reach;         // m, vehicle pose to the drum's front (the cutter's cutter.reach). Default 5.
-  double drum_width = CutterOptions{}.width;    // m, the drum's width (the cutter's cutter.width). Default 3.3.
-  double standoff = CutterOptions{}.standoff;   // m, drum front to face where a cut starts (the cutter's cutter.standoff). Default 0.1.
+  double reach = CutterOptions{}.reach;  // m, vehicle pose to the drum's front (the cutter's cutter.reach). Default 5.
+  double drum_width = CutterOptions{}.width;  // m, the drum's width (the cutter's cutter.width). Default 3.3.
+  // m, drum front to face where a cut starts (the cutter's cutter.standoff). Default 0.1.
+  double standoff = CutterOptions{}.standoff;
   // m between the vehicle's side (or the drum's end) and a rib at a cut, beyond the clearance:
   // room to turn. The path planner turns in heading bins (5 degrees by default) and the 10 m
   // miner's ends swing 0.44 m for one bin: with less, a vehicle beside a rib can only drive
@@ -68,12 +69,13 @@ struct AdvanceOptions {
   // m behind the vehicle at a cut over which the rib's nearest point counts: the vehicle can
   // back this far straight out of its cutting position. Default 10.
   double approach_length = 10.0;
-  std::string box_cut_side = "right";  // "right" or "left" (looking at the face): where the box cut goes. Default right.
+  // "right" or "left" (looking at the face): where the box cut goes. Default right.
+  std::string box_cut_side = "right";
   // m, the drum's front to the advanced face after backing out: the room the roof bolter
   // needs in front of the miner. Default 12.
   double bolter_gap = 12.0;
-  double max_depth = 10.0;   // m: deeper requests are refused (the cutter's 20 cycles of 0.5 m). Default 10.
-  int max_slab_cuts = 4;     // an entry that needs more is refused. Default 4.
+  double max_depth = 10.0;  // m: deeper requests are refused (the cutter's 20 cycles of 0.5 m). Default 10.
+  int max_slab_cuts = 4;    // an entry that needs more is refused. Default 4.
   int64_t maneuver_expansions = 300'000;  // expansions each maneuver check may take. Default 300,000.
   EntryOptions entry;
 };
@@ -85,16 +87,16 @@ std::string ValidateOptions(const AdvanceOptions& options);
 void DeclareOptions(OptionScope scope, AdvanceOptions& options);
 
 struct AdvanceRequest {
-  Pose2 vehicle;                  // where the vehicle is (map frame)
+  Pose2 vehicle;                                        // where the vehicle is (map frame)
   Eigen::Vector2d face_hint = Eigen::Vector2d::Zero();  // m, a point in front of the face
-  double direction = 0.0;         // rad, the direction of advance
-  double depth = 0.0;             // m, how far to advance the face
-  double clearance = 0.0;         // m, the maneuvers keep this from the walls
+  double direction = 0.0;                               // rad, the direction of advance
+  double depth = 0.0;                                   // m, how far to advance the face
+  double clearance = 0.0;                               // m, the maneuvers keep this from the walls
 };
 
 // One driving goal checked by the path planner.
 struct ManeuverCheck {
-  size_t task = 0;   // index in plan.tasks
+  size_t task = 0;  // index in plan.tasks
   Pose2 start, goal;
   Se2PlanResult result;
 };

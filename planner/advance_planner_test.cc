@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "common/angle.h"
+#include "planner/test_maps.h"
 #include "planner/testing/path_checker.h"
 #include "sim/mine_generator.h"
 
@@ -56,27 +57,23 @@ struct Entry {
     const double h = 0.5 * width, t = std::tan(face_angle);
     const double x1 = length - 12.0, x0 = x1 - 6.0, arm = h + 15.0;
     if (dead_end) return JitteredPolygon({{0, -h}, {length + h * t, -h}, {length - h * t, h}, {0, h}}, 1.0, jitter, 7);
-    return JitteredPolygon({{0, -h}, {x0, -h}, {x0, -arm}, {x1, -arm}, {x1, -h}, {length + h * t, -h},
-                            {length - h * t, h}, {x1, h}, {x1, arm}, {x0, arm}, {x0, h}, {0, h}},
+    return JitteredPolygon({{0, -h},
+                            {x0, -h},
+                            {x0, -arm},
+                            {x1, -arm},
+                            {x1, -h},
+                            {length + h * t, -h},
+                            {length - h * t, h},
+                            {x1, h},
+                            {x1, arm},
+                            {x0, arm},
+                            {x0, h},
+                            {0, h}},
                            1.0, jitter, 7);
   }
 };
 
 Footprint Miner() { return Footprint::Rectangle(3.3, 10.0); }
-
-testing::PathCheckSettings Settings(double clearance) {
-  testing::PathCheckSettings s;
-  s.polygon = Miner().vertices;
-  s.clearance = clearance;
-  s.sample_step = 0.02;
-  return s;
-}
-
-std::vector<testing::CheckedPiece> Pieces(const PlannedPath& path) {
-  std::vector<testing::CheckedPiece> out;
-  for (const MotionPiece& p : path.pieces) out.push_back({static_cast<int>(p.motion), p.end});
-  return out;
-}
 
 AdvanceRequest Request(const Pose2& vehicle, const Eigen::Vector2d& hint, double direction, double depth = 1.0,
                        double clearance = 0.1) {
@@ -134,7 +131,8 @@ void ExpectAdvancePlan(const std::vector<Segment>& walls, const AdvanceRequest& 
       EXPECT_LE(at_cut, kStandoff + 0.02);
       const double tram = (cut.target.translation() - t.target.translation()).norm();
       EXPECT_NEAR(tram, request.clearance, 1e-9);
-      const auto straight = testing::CheckPath(walls, t.target, {{0, cut.target}}, Settings(0.0));
+      const auto straight =
+          testing::CheckPath(walls, t.target, {{0, cut.target}}, planner_test::CheckSettings(Miner().vertices, 0.0));
       EXPECT_TRUE(straight.ok) << straight.problem;
     } else if (t.kind == TaskKind::kBoxCut || t.kind == TaskKind::kSlabCut) {
       EXPECT_EQ(t.appendages, Appendages::kCutting);
@@ -168,7 +166,8 @@ void ExpectAdvancePlan(const std::vector<Segment>& walls, const AdvanceRequest& 
   }
   // The box cut on the right rib (looking at the face), the last slab cut on the left.
   const Eigen::Vector2d left(-normal.y(), normal.x());
-  EXPECT_LT(left.dot(plan.tasks[1].target.translation() - face_point), left.dot(plan.tasks[plan.tasks.size() - 2].target.translation() - face_point));
+  EXPECT_LT(left.dot(plan.tasks[1].target.translation() - face_point),
+            left.dot(plan.tasks[plan.tasks.size() - 2].target.translation() - face_point));
 
   // Every maneuver, planned again here from where the task before leaves the vehicle, and
   // judged by the independent checker against the true walls.
@@ -182,14 +181,15 @@ void ExpectAdvancePlan(const std::vector<Segment>& walls, const AdvanceRequest& 
     SCOPED_TRACE(t.description);
     const Se2PlanResult r = planner.Plan(from, t.target);
     ASSERT_EQ(r.status, SearchStatus::kFound) << r.reason;
-    const auto report = testing::CheckPath(walls, from, Pieces(r.path), Settings(request.clearance));
+    const auto settings = planner_test::CheckSettings(Miner().vertices, request.clearance);
+    const auto report = testing::CheckPath(walls, from, planner_test::AsChecked(r.path), settings);
     EXPECT_TRUE(report.ok) << report.problem;
     // The library's own check went the same way.
     ASSERT_LT(static_cast<size_t>(maneuvers), result.maneuvers.size());
     const ManeuverCheck& m = result.maneuvers[static_cast<size_t>(maneuvers)];
     EXPECT_EQ(m.start.translation(), from.translation());
     EXPECT_EQ(m.goal.translation(), t.target.translation());
-    const auto library = testing::CheckPath(walls, m.start, Pieces(m.result.path), Settings(request.clearance));
+    const auto library = testing::CheckPath(walls, m.start, planner_test::AsChecked(m.result.path), settings);
     EXPECT_TRUE(library.ok) << library.problem;
     ++maneuvers;
     from = t.target;
@@ -260,7 +260,9 @@ TEST(AdvancePlanner, ANarrowEntryIsOneBoxCutTheWholeWidth) {
   EXPECT_NEAR(box.target.y, 0.0, 2.0 * entry.jitter + 0.02);  // centred
   EXPECT_GE(testing::PoseClearance(walls, Miner().vertices, result.plan.tasks[0].target), 0.05);
   for (const ManeuverCheck& m : result.maneuvers)
-    EXPECT_TRUE(testing::CheckPath(walls, m.start, Pieces(m.result.path), Settings(0.05)).ok);
+    EXPECT_TRUE(testing::CheckPath(walls, m.start, planner_test::AsChecked(m.result.path),
+                                   planner_test::CheckSettings(Miner().vertices, 0.05))
+                    .ok);
 }
 
 TEST(AdvancePlanner, TheGeneratedMinesBoundaryFaceAtTheEndOfAnEntry) {
@@ -269,7 +271,7 @@ TEST(AdvancePlanner, TheGeneratedMinesBoundaryFaceAtTheEndOfAnEntry) {
   MineOptions mine;  // 2 x 3 pillars of 12 m, 6 m rooms, walls wander up to 0.6 m
   const std::vector<Segment> world = GenerateRoomAndPillarMine(mine);
   const double y = mine.room_width + mine.pillar_size + 0.5 * mine.room_width;  // the middle entry: 21 m
-  const double face_x = MinePanelSize(mine).x();                              // 60 m
+  const double face_x = MinePanelSize(mine).x();                                // 60 m
   const AdvanceRequest request = Request({40.0, y, 0.0}, {50.0, y}, 0.0, 1.0);
   const AdvanceResult result = PlanAdvance(TaskMapFromSegments(world), Miner(), request, {}, {});
   ASSERT_EQ(result.plan.status, PlanStatus::kOk) << result.plan.reason;
@@ -293,7 +295,8 @@ TEST(AdvancePlanner, AHintAtNothingOrAtAFrontierIsRefused) {
                                 Request({entry.length - 20, 0, 0}, {entry.length - 4.0, 0}, kPi), {}, {});
   EXPECT_EQ(r.plan.status, PlanStatus::kFailed);
   EXPECT_TRUE(r.plan.tasks.empty());
-  EXPECT_EQ(r.plan.reason.rfind("the face hint points at nothing: no wall within 15.00 m ahead of (36.00, 0.00)", 0), 0u)
+  EXPECT_EQ(r.plan.reason.rfind("the face hint points at nothing: no wall within 15.00 m ahead of (36.00, 0.00)", 0),
+            0u)
       << r.plan.reason;
   // A contour map whose entry ends in a frontier (the face not seen yet).
   TaskMap unseen;
@@ -307,7 +310,7 @@ TEST(AdvancePlanner, AHintAtNothingOrAtAFrontierIsRefused) {
   // A hint inside a pillar of a contour map sees the back of a wall.
   TaskMap room;
   room.oriented = true;
-  room.walls = {{0, 0, 30, 0}, {30, 0, 30, 20}, {30, 20, 0, 20}, {0, 20, 0, 0},  // the room, counter-clockwise
+  room.walls = {{0, 0, 30, 0},   {30, 0, 30, 20},  {30, 20, 0, 20}, {0, 20, 0, 0},    // the room, counter-clockwise
                 {10, 8, 10, 12}, {10, 12, 14, 12}, {14, 12, 14, 8}, {14, 8, 10, 8}};  // a pillar, clockwise
   r = PlanAdvance(room, Miner(), Request({5, 5, 0}, {12, 10}, 0.0), {}, {});
   EXPECT_EQ(r.plan.reason.rfind("the face hint is not in free space", 0), 0u) << r.plan.reason;
@@ -329,7 +332,8 @@ TEST(AdvancePlanner, AFaceWithoutEntryWallsIsRefused) {
   // One rib only: a wall on the right, open to the left.
   std::vector<Segment> one_sided = JitteredPolygon({{0, 0}, {40, 0}, {40, 40}, {0, 40}}, 1.0, 0.05, 3);
   one_sided.push_back({0, 17, 40, 17});
-  const AdvanceResult one = PlanAdvance(TaskMapFromSegments(one_sided), Miner(), Request({20, 20, 0}, {30, 20}, 0.0), {}, {});
+  const AdvanceResult one =
+      PlanAdvance(TaskMapFromSegments(one_sided), Miner(), Request({20, 20, 0}, {30, 20}, 0.0), {}, {});
   EXPECT_EQ(one.plan.reason.rfind("no entry wall found on the left: 0 of ", 0), 0u) << one.plan.reason;
 }
 
@@ -339,7 +343,8 @@ TEST(AdvancePlanner, AFaceTooObliqueForTheCutterIsRefused) {
   const AdvanceResult r = PlanAdvance(TaskMapFromSegments(entry.Walls()), Miner(),
                                       Request({entry.length - 22.0, 0, 0}, {entry.length - 6.0, 0}, 0.0), {}, {});
   EXPECT_EQ(r.plan.status, PlanStatus::kFailed);
-  EXPECT_NE(r.plan.reason.find("off square to the entry (the cutter squares up to at most 34.4 deg)"), std::string::npos)
+  EXPECT_NE(r.plan.reason.find("off square to the entry (the cutter squares up to at most 34.4 deg)"),
+            std::string::npos)
       << r.plan.reason;
 }
 
@@ -348,8 +353,8 @@ TEST(AdvancePlanner, AGoalThePathPlannerCannotReachFailsThePlanWithItsReason) {
   Entry entry{6.5};
   std::vector<Segment> walls = entry.Walls();
   for (const Segment& s : JitteredPolygon({{0, 25}, {40, 25}, {40, 45}, {0, 45}}, 1.0, 0.0, 1)) walls.push_back(s);
-  const AdvanceResult r = PlanAdvance(TaskMapFromSegments(walls), Miner(),
-                                      Request({20, 35, 0}, {entry.length - 4.0, 0}, 0.0), {}, {});
+  const AdvanceResult r =
+      PlanAdvance(TaskMapFromSegments(walls), Miner(), Request({20, 35, 0}, {entry.length - 4.0, 0}, 0.0), {}, {});
   EXPECT_EQ(r.plan.status, PlanStatus::kFailed);
   EXPECT_EQ(r.plan.reason.rfind("move into position for the box cut: goal (", 0), 0u) << r.plan.reason;
   EXPECT_NE(r.plan.reason.find("is not reachable from (20.00, 35.00, 0.00): no_path: "), std::string::npos)
@@ -387,9 +392,9 @@ TEST(AdvancePlanner, ARibHuggingBoxCutInADeadEndLeavesNoRoomToReposition) {
                     entry.FacePoint(), entry.FaceNormal(), entry.jitter, 1, -1.0);
   AdvanceOptions hugging_crosscut = hugging;
   Entry with_crosscut{6.5};
-  const AdvanceResult hug = PlanAdvance(TaskMapFromSegments(with_crosscut.Walls()), Miner(),
-                                        Request({with_crosscut.length - 22.0, 0, 0}, {with_crosscut.length - 4.0, 0}, 0.0),
-                                        hugging_crosscut, {});
+  const AdvanceResult hug = PlanAdvance(
+      TaskMapFromSegments(with_crosscut.Walls()), Miner(),
+      Request({with_crosscut.length - 22.0, 0, 0}, {with_crosscut.length - 4.0, 0}, 0.0), hugging_crosscut, {});
   EXPECT_EQ(hug.plan.status, PlanStatus::kOk) << hug.plan.reason;
 }
 
@@ -408,7 +413,8 @@ TEST(AdvancePlanner, BadRequestsAndOptionsAreRefusedInOneLine) {
   bad.box_cut_side = "middle";
   EXPECT_EQ(PlanAdvance(map, Miner(), Request({20, 0, 0}, {36, 0}, 0.0), bad, {}).plan.reason,
             "bad options: box_cut_side must be right or left");
-  EXPECT_EQ(PlanAdvance(TaskMap{}, Miner(), Request({20, 0, 0}, {36, 0}, 0.0), {}, {}).plan.reason, "the map has no walls");
+  EXPECT_EQ(PlanAdvance(TaskMap{}, Miner(), Request({20, 0, 0}, {36, 0}, 0.0), {}, {}).plan.reason,
+            "the map has no walls");
   // The box cut on the left instead.
   AdvanceOptions left;
   left.box_cut_side = "left";

@@ -82,6 +82,17 @@ Segment Transformed(const Pose2& t, const Segment& s) { return {t * s.a, t * s.b
 std::string Deg(double rad) { return FixedNumber(RadToDeg(rad), 1) + " deg"; }
 std::string Point(const Eigen::Vector2d& p) { return "(" + FixedNumber(p.x()) + ", " + FixedNumber(p.y()) + ")"; }
 
+// The least (sign +1) or greatest (sign -1) value of the other coordinate over the parts of
+// `segments` whose coordinate `along` lies in [lo, hi], and `start`.
+double Extreme(const std::vector<Segment>& segments, int along, double lo, double hi, double sign, double start) {
+  double best = start;
+  for (const Segment& s : segments) {
+    double v0 = 0.0, v1 = 0.0;
+    if (ClippedValues(s, along, lo, hi, v0, v1)) best = sign * std::min({sign * best, sign * v0, sign * v1});
+  }
+  return best;
+}
+
 }  // namespace
 
 std::string ValidateOptions(const EntryOptions& o) {
@@ -101,38 +112,25 @@ void DeclareOptions(OptionScope s, EntryOptions& o) {
               1000.0);
   s.AddDouble("wall_search_length", &o.wall_search_length, "m",
               "the entry's walls are looked for this far back from the face", 0.1, 1000.0);
-  s.AddDouble("max_half_width", &o.max_half_width, "m", "side walls farther than this from the hint's ray are not the entry's",
-              0.1, 100.0);
+  s.AddDouble("max_half_width", &o.max_half_width, "m",
+              "side walls farther than this from the hint's ray are not the entry's", 0.1, 100.0);
   s.AddDouble("ray_spacing", &o.ray_spacing, "m", "between the rays along the walls and across the face", 0.01, 2.0);
   s.AddDouble("max_square_angle", &o.max_square_angle, "rad",
-              "the face's normal at most this far off the entry's axis (the cutter's cutter.max_square_angle)", 0.01, 1.5);
+              "the face's normal at most this far off the entry's axis (the cutter's cutter.max_square_angle)", 0.01,
+              1.5);
   s.AddInt("min_wall_hits", &o.min_wall_hits, "rays that must hit each side wall", 2, 1000);
 }
 
 double EntryGeometry::LeftLimit(double x0, double x1) const {
-  double y = std::min(left_fit.At(x0), left_fit.At(x1));
-  for (const Segment& s : left_wall) {
-    double v0 = 0.0, v1 = 0.0;
-    if (ClippedValues(s, 0, x0, x1, v0, v1)) y = std::min({y, v0, v1});
-  }
-  return y;
+  return Extreme(left_wall, 0, x0, x1, 1.0, std::min(left_fit.At(x0), left_fit.At(x1)));
 }
 
 double EntryGeometry::RightLimit(double x0, double x1) const {
-  double y = std::max(right_fit.At(x0), right_fit.At(x1));
-  for (const Segment& s : right_wall) {
-    double v0 = 0.0, v1 = 0.0;
-    if (ClippedValues(s, 0, x0, x1, v0, v1)) y = std::max({y, v0, v1});
-  }
-  return y;
+  return Extreme(right_wall, 0, x0, x1, -1.0, std::max(right_fit.At(x0), right_fit.At(x1)));
 }
 
 double EntryGeometry::FaceLimit(double y0, double y1) const {
-  double x = std::numeric_limits<double>::infinity();
-  for (const Segment& s : face_segments) {
-    double v0 = 0.0, v1 = 0.0;
-    if (ClippedValues(s, 1, y0, y1, v0, v1)) x = std::min({x, v0, v1});
-  }
+  const double x = Extreme(face_segments, 1, y0, y1, 1.0, std::numeric_limits<double>::infinity());
   return std::isfinite(x) ? x : 0.0;
 }
 
@@ -194,8 +192,8 @@ EntryResult FindEntry(const TaskMap& map, const Eigen::Vector2d& hint, double di
                             " m before the face at " + Point(f0);
   if (sides[0].size() < static_cast<size_t>(o.min_wall_hits) && sides[1].size() < static_cast<size_t>(o.min_wall_hits))
     return fail("no entry walls found: " + std::to_string(sides[0].size()) + " left and " +
-                std::to_string(sides[1].size()) + " right of " + std::to_string(rays) + " rays met a wall along the way " +
-                where);
+                std::to_string(sides[1].size()) + " right of " + std::to_string(rays) +
+                " rays met a wall along the way " + where);
   for (int side = 0; side < 2; ++side) {
     std::vector<double> offsets;
     for (const SideHit& h : sides[side]) offsets.push_back(h.local.y());
@@ -265,8 +263,8 @@ EntryResult FindEntry(const TaskMap& map, const Eigen::Vector2d& hint, double di
   const double heading = std::atan2(normal.y(), normal.x());
   const double face_angle = NormalizeAngle(heading - std::atan2(axis.y(), axis.x()));
   if (std::abs(face_angle) > o.max_square_angle)
-    return fail("the face is " + Deg(std::abs(face_angle)) + " off square to the entry (the cutter squares up to at most " +
-                Deg(o.max_square_angle) + ")");
+    return fail("the face is " + Deg(std::abs(face_angle)) +
+                " off square to the entry (the cutter squares up to at most " + Deg(o.max_square_angle) + ")");
   const Eigen::Vector2d left_dir(-normal.y(), normal.x());
   double lo = std::numeric_limits<double>::infinity(), hi = -lo;
   for (const Eigen::Vector2d& p : face_hits) {

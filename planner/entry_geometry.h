@@ -47,7 +47,7 @@ struct EntryOptions {
   // rad: the face's normal at most this far off the entry's axis (the cutter's
   // max_square_angle: it refuses more). Default 0.6.
   double max_square_angle = CutterOptions{}.max_square_angle;
-  int min_wall_hits = 4;             // rays that must hit each side wall. Default 4.
+  int min_wall_hits = 4;  // rays that must hit each side wall. Default 4.
 };
 
 // "" when usable, else one line naming the option.
@@ -62,13 +62,13 @@ struct WallLine {
 };
 
 struct EntryGeometry {
-  Pose2 entry_frame;         // world_T_entry
-  Pose2 face_frame;          // world_T_face = entry_frame * (0, 0, face_angle)
-  Segment face;              // map frame: the fitted face across the entry, right end to left end (free space on its left)
-  double axis = 0.0;         // rad, map frame: the entry's direction towards the face
-  double face_angle = 0.0;   // rad: the face's normal less the axis (0 = square; positive: normal turned left)
-  double width = 0.0;        // m: the entry's width across its axis (median over the rays that hit both ribs)
-  double face_distance = 0.0;  // m from the hint to the face along the hint's ray
+  Pose2 entry_frame;  // world_T_entry
+  Pose2 face_frame;   // world_T_face = entry_frame * (0, 0, face_angle)
+  Segment face;       // map frame: the fitted face across the entry, right end to left end (free space on its left)
+  double axis = 0.0;  // rad, map frame: the entry's direction towards the face
+  double face_angle = 0.0;       // rad: the face's normal less the axis (0 = square; positive: normal turned left)
+  double width = 0.0;            // m: the entry's width across its axis (median over the rays that hit both ribs)
+  double face_distance = 0.0;    // m from the hint to the face along the hint's ray
   WallLine left_fit, right_fit;  // entry frame: least-squares lines through each rib's hits
   // Entry frame: the segments each side's rays hit, and the ray hits (pictures, tests).
   std::vector<Segment> left_wall, right_wall;

@@ -25,8 +25,7 @@ SvgScene PathScene(const std::vector<Segment>& map, const Footprint& footprint, 
       for (double x = lo.x(); x <= hi.x() + kCell; x += kCell) {
         const bool in = x < hi.x() && known.Contains({x + kCell / 2, y + kCell / 2});
         if (in && !in_run) run_start = x;
-        if (!in && in_run)
-          cells.polygons.push_back({{run_start, y}, {x, y}, {x, y + kCell}, {run_start, y + kCell}});
+        if (!in && in_run) cells.polygons.push_back({{run_start, y}, {x, y}, {x, y + kCell}, {run_start, y + kCell}});
         in_run = in;
       }
     }
@@ -35,7 +34,11 @@ SvgScene PathScene(const std::vector<Segment>& map, const Footprint& footprint, 
     // Frontiers dashed: one two-pose dashed trajectory each, the first in the legend.
     for (const Segment& fr : space->frontiers)
       scene.trajectories.push_back({scene.trajectories.empty() ? "frontiers (end of what the ladar saw)" : "",
-                                    "#d62728", 1.5, true, false, {Pose2(fr.a.x(), fr.a.y(), 0.0), Pose2(fr.b.x(), fr.b.y(), 0.0)}});
+                                    "#d62728",
+                                    1.5,
+                                    true,
+                                    false,
+                                    {Pose2(fr.a.x(), fr.a.y(), 0.0), Pose2(fr.b.x(), fr.b.y(), 0.0)}});
   } else {
     scene.lines.push_back({"map", "#333333", 1.5, map, {}});
   }

@@ -62,9 +62,8 @@ PredictedView Predict(const Boundary& b, const Eigen::Vector2d& p, const SurveyP
 // m to the nearest wall or frontier (at most `cap`).
 double Clearance(const Boundary& b, const Eigen::Vector2d& p, double cap) {
   double d = cap;
-  b.index.ForEachNear(p, cap, [&](int i) {
-    d = std::min(d, PointToSegmentDistance(p, b.index.segments()[static_cast<size_t>(i)]));
-  });
+  b.index.ForEachNear(
+      p, cap, [&](int i) { d = std::min(d, PointToSegmentDistance(p, b.index.segments()[static_cast<size_t>(i)])); });
   return d;
 }
 
@@ -97,12 +96,11 @@ int CountArms(const Boundary& b, const Eigen::Vector2d& p, double clearance, dou
 class CentreDistances {
  public:
   CentreDistances(const std::vector<Segment>& boundary, double min_clearance, const Eigen::Vector2d& from, double cell)
-      : frame_(GridFrame::Covering(boundary, cell, 1.0)),
-        field_(boundary, frame_, min_clearance + 1.0),
-        from_(from) {
+      : frame_(GridFrame::Covering(boundary, cell, 1.0)), field_(boundary, frame_, min_clearance + 1.0), from_(from) {
     OccupancyGrid grid(frame_.nx, frame_.ny);
     for (int iy = 0; iy < frame_.ny; ++iy)
-      for (int ix = 0; ix < frame_.nx; ++ix) grid.SetBlocked(ix, iy, field_.AtCell(ix, iy) < min_clearance - field_.Slack());
+      for (int ix = 0; ix < frame_.nx; ++ix)
+        grid.SetBlocked(ix, iy, field_.AtCell(ix, iy) < min_clearance - field_.Slack());
     const GridCell source{frame_.CellX(from.x()), frame_.CellY(from.y())};
     if (grid.Free(source.x, source.y)) distances_ = GridDistancesFrom(grid, source);
   }
@@ -139,7 +137,8 @@ std::string ValidateOptions(const SurveyPlannerOptions& o) {
   auto positive = [](double v) { return std::isfinite(v) && v > 0.0; };
   if (!positive(o.sensor_range)) return "sensor_range must be > 0";
   if (o.prediction_rays < 8) return "prediction_rays must be at least 8";
-  if (!std::isfinite(o.min_overlap) || o.min_overlap < 0.0 || o.min_overlap > 1.0) return "min_overlap must be in [0, 1]";
+  if (!std::isfinite(o.min_overlap) || o.min_overlap < 0.0 || o.min_overlap > 1.0)
+    return "min_overlap must be in [0, 1]";
   if (!positive(o.unknown_depth)) return "unknown_depth must be > 0";
   if (!std::isfinite(o.area_value) || o.area_value < 0.0) return "area_value must be >= 0";
   if (!std::isfinite(o.min_new_area) || o.min_new_area < 0.0) return "min_new_area must be >= 0";
@@ -161,20 +160,25 @@ std::string ValidateOptions(const SurveyPlannerOptions& o) {
 }
 
 void DeclareOptions(OptionScope s, SurveyPlannerOptions& o) {
-  s.AddDouble("sensor_range", &o.sensor_range, "m", "the ladar's useful range in the prediction of a station's scan", 0.1,
-              1000.0);
+  s.AddDouble("sensor_range", &o.sensor_range, "m", "the ladar's useful range in the prediction of a station's scan",
+              0.1, 1000.0);
   s.AddInt("prediction_rays", &o.prediction_rays, "rays cast from a candidate station to predict its scan", 8, 100000);
   s.AddDouble("min_overlap", &o.min_overlap, "",
               "least fraction of a station's predicted returns that fall on walls already in the map", 0.0, 1.0);
   s.AddDouble("unknown_depth", &o.unknown_depth, "m", "space beyond a frontier counted as new area", 0.1, 1000.0);
   s.AddDouble("area_value", &o.area_value, "m/m^2", "path cost one square metre of new area is worth", 0.0, 1000.0);
   s.AddDouble("min_new_area", &o.min_new_area, "m^2", "a station must be expected to see this much new area", 0.0, 1e6);
-  s.AddDouble("min_frontier_length", &o.min_frontier_length, "m", "shorter frontiers are gaps, not openings", 0.0, 1000.0);
-  s.AddDouble("min_standoff", &o.min_standoff, "m", "nearest candidate station before a frontier's middle", 0.01, 1000.0);
-  s.AddDouble("max_standoff", &o.max_standoff, "m", "farthest candidate station before a frontier's middle", 0.01, 1000.0);
-  s.AddDouble("standoff_step", &o.standoff_step, "m", "grid of the candidate stations before one frontier", 0.01, 1000.0);
+  s.AddDouble("min_frontier_length", &o.min_frontier_length, "m", "shorter frontiers are gaps, not openings", 0.0,
+              1000.0);
+  s.AddDouble("min_standoff", &o.min_standoff, "m", "nearest candidate station before a frontier's middle", 0.01,
+              1000.0);
+  s.AddDouble("max_standoff", &o.max_standoff, "m", "farthest candidate station before a frontier's middle", 0.01,
+              1000.0);
+  s.AddDouble("standoff_step", &o.standoff_step, "m", "grid of the candidate stations before one frontier", 0.01,
+              1000.0);
   s.AddDouble("min_wall_distance", &o.min_wall_distance, "m",
-              "a candidate station keeps this far from every wall and frontier (scans see walls square on)", 0.0, 100.0);
+              "a candidate station keeps this far from every wall and frontier (scans see walls square on)", 0.0,
+              100.0);
   s.AddDouble("station_margin", &o.station_margin, "m",
               "a station's footprint keeps the request's clearance plus this from the map (room to turn a heading bin)",
               0.0, 10.0);
@@ -186,7 +190,8 @@ void DeclareOptions(OptionScope s, SurveyPlannerOptions& o) {
               "grid of the search for intersections; 0 = no intersection candidates", 0.0, 100.0);
   s.AddInt("max_plans", &o.max_plans, "path plans per decision", 1, 10000);
   s.AddInt("tries_per_frontier", &o.tries_per_frontier,
-           "candidates planned per frontier (its best first; when they cannot be reached the rest are not tried)", 1, 10000);
+           "candidates planned per frontier (its best first; when they cannot be reached the rest are not tried)", 1,
+           10000);
   s.AddInt64("plan_expansions", &o.plan_expansions, "path planner expansions each plan may take", 1, 1'000'000'000);
 }
 
@@ -214,7 +219,8 @@ SurveyDecision PlanNextStation(const TaskMap& map_in, const Footprint& footprint
     return finish(PlanStatus::kFailed, "the vehicle pose is not finite");
   if (!std::isfinite(r.clearance) || r.clearance < 0.0)
     return finish(PlanStatus::kFailed, "clearance " + FixedNumber(r.clearance) + " m is not >= 0");
-  if (!map_in.oriented) return finish(PlanStatus::kFailed, "a survey needs a contour map (its frontiers), not a line map");
+  if (!map_in.oriented)
+    return finish(PlanStatus::kFailed, "a survey needs a contour map (its frontiers), not a line map");
   if (map_in.walls.empty()) return finish(PlanStatus::kFailed, "the map has no walls yet");
   const Footprint footprint = Normalized(footprint_in);
   // The vehicle stands where the ladar looked from: a frontier through it is no boundary.
@@ -233,8 +239,9 @@ SurveyDecision PlanNextStation(const TaskMap& map_in, const Footprint& footprint
   roomy_options.clearance = r.clearance + o.station_margin;
   const Se2Planner roomy(map.Boundary(), footprint, roomy_options);
   if (!planner.PoseFree(r.vehicle))
-    return finish(PlanStatus::kFailed, "the vehicle at " + PoseText(r.vehicle) + " is in collision with the map (clearance " +
-                                           FixedNumber(r.clearance) + " m)");
+    return finish(PlanStatus::kFailed, "the vehicle at " + PoseText(r.vehicle) +
+                                           " is in collision with the map (clearance " + FixedNumber(r.clearance) +
+                                           " m)");
   std::vector<Pose2> visited = r.visited;
   visited.push_back(r.vehicle);  // it has scanned where it stands
   const CentreDistances centre(map.Boundary(), InscribedRadius(footprint) + r.clearance, r.vehicle.translation(),
@@ -308,7 +315,8 @@ SurveyDecision PlanNextStation(const TaskMap& map_in, const Footprint& footprint
   // max_standoff from the frontier's `middle`, with no wall in between.
   auto add_candidate = [&](const Eigen::Vector2d& raw, int frontier, const Eigen::Vector2d& middle, double facing) {
     const Eigen::Vector2d p = centred(raw);
-    if (std::any_of(placed.begin(), placed.end(), [&](const Eigen::Vector2d& q) { return (q - p).norm() < 0.5; })) return;
+    if (std::any_of(placed.begin(), placed.end(), [&](const Eigen::Vector2d& q) { return (q - p).norm() < 0.5; }))
+      return;
     placed.push_back(p);
     StationCandidate c;
     c.pose = Pose2(p.x(), p.y(), NormalizeAngle(r.vehicle.theta));
@@ -323,8 +331,10 @@ SurveyDecision PlanNextStation(const TaskMap& map_in, const Footprint& footprint
     c.view = Predict(boundary, p, o);
     const double distance = centre.LowerBound(p);
     c.bound = distance - o.area_value * c.view.new_area;
-    if (!std::isfinite(distance)) c.rejected = "not reachable (no corridor wide enough for the footprint)";
-    else if (c.view.wall_rays + c.view.frontier_rays == 0) c.rejected = "sees nothing within sensor_range";
+    if (!std::isfinite(distance))
+      c.rejected = "not reachable (no corridor wide enough for the footprint)";
+    else if (c.view.wall_rays + c.view.frontier_rays == 0)
+      c.rejected = "sees nothing within sensor_range";
     else if (c.view.overlap < o.min_overlap)
       c.rejected = "overlap " + FixedNumber(c.view.overlap) + " < " + FixedNumber(o.min_overlap);
     else if (c.view.new_area < o.min_new_area)
@@ -337,8 +347,10 @@ SurveyDecision PlanNextStation(const TaskMap& map_in, const Footprint& footprint
                                       [&](double g) { return std::abs(NormalizeAngle(g - heading)) < 1e-6; });
         if (!seen && roomy.PoseFree(Pose2(p.x(), p.y(), heading))) free.push_back(heading);
       }
-      if (free.empty()) c.rejected = "the footprint (with station_margin) fits there at no heading tried";
-      else c.pose.theta = free.front(), c.feasible = true;
+      if (free.empty())
+        c.rejected = "the footprint (with station_margin) fits there at no heading tried";
+      else
+        c.pose.theta = free.front(), c.feasible = true;
     }
     d.candidates.push_back(c);
     headings.push_back(free);
@@ -380,9 +392,11 @@ SurveyDecision PlanNextStation(const TaskMap& map_in, const Footprint& footprint
         const double c = Clearance(boundary, p, o.sensor_range);
         if (c < min_clearance || !known.Contains(p)) continue;
         double arm_bearing = 0.0;
-        if (CountArms(boundary, p, c, o.sensor_range, arm_bearing) >= kMinArms) crossings.push_back({p, c, arm_bearing});
+        if (CountArms(boundary, p, c, o.sensor_range, arm_bearing) >= kMinArms)
+          crossings.push_back({p, c, arm_bearing});
       }
-    std::sort(crossings.begin(), crossings.end(), [](const Crossing& a, const Crossing& b) { return a.clearance > b.clearance; });
+    std::sort(crossings.begin(), crossings.end(),
+              [](const Crossing& a, const Crossing& b) { return a.clearance > b.clearance; });
     std::vector<Pose2> picked;
     for (const Crossing& c : crossings) {
       if (NearAny(c.p, picked, std::max(o.min_station_spacing, 2.0 * o.intersection_spacing))) continue;
@@ -395,7 +409,8 @@ SurveyDecision PlanNextStation(const TaskMap& map_in, const Footprint& footprint
   std::vector<size_t> order;
   for (size_t k = 0; k < d.candidates.size(); ++k)
     if (d.candidates[k].rejected.empty()) order.push_back(k);
-  std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return d.candidates[a].bound < d.candidates[b].bound; });
+  std::sort(order.begin(), order.end(),
+            [&](size_t a, size_t b) { return d.candidates[a].bound < d.candidates[b].bound; });
   SearchLimits plan_limits = limits;
   plan_limits.max_expansions = std::min(limits.max_expansions, o.plan_expansions);
   int untried = 0, calls = 0;
@@ -457,14 +472,13 @@ SurveyDecision PlanNextStation(const TaskMap& map_in, const Footprint& footprint
     t.clearance = r.clearance;
     t.allow_reverse = true;
     t.appendages = Appendages::kStowed;
-    const std::string what = c.frontier >= 0 ? FixedNumber(c.standoff, 1) + " m before frontier " +
-                                                   std::to_string(c.frontier) + " (" +
-                                                   FixedNumber(d.frontiers[static_cast<size_t>(c.frontier)].segment.length(), 1) +
-                                                   " m)"
-                                             : "at an intersection";
+    const std::string what =
+        c.frontier >= 0 ? FixedNumber(c.standoff, 1) + " m before frontier " + std::to_string(c.frontier) + " (" +
+                              FixedNumber(d.frontiers[static_cast<size_t>(c.frontier)].segment.length(), 1) + " m)"
+                        : "at an intersection";
     std::ostringstream line;
-    line << "scan station " << PoseText(c.pose) << " " << what << ": overlap " << FixedNumber(c.view.overlap)
-         << ", " << FixedNumber(c.view.new_area, 0) << " m^2 new, path " << FixedNumber(d.path.Length(), 1) << " m";
+    line << "scan station " << PoseText(c.pose) << " " << what << ": overlap " << FixedNumber(c.view.overlap) << ", "
+         << FixedNumber(c.view.new_area, 0) << " m^2 new, path " << FixedNumber(d.path.Length(), 1) << " m";
     t.description = line.str();
     d.plan.tasks.push_back(t);
     int open = 0;

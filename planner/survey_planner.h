@@ -63,8 +63,8 @@
 #include "common/pose2.h"
 #include "planner/footprint.h"
 #include "planner/motion.h"
-#include "planner/search_limits.h"
 #include "planner/se2_planner.h"
+#include "planner/search_limits.h"
 #include "planner/task.h"
 
 namespace minenav {
@@ -72,16 +72,16 @@ namespace minenav {
 class OptionScope;
 
 struct SurveyPlannerOptions {
-  double sensor_range = 30.0;         // m, the ladar's useful range in the prediction. Default 30.
-  int prediction_rays = 360;          // rays cast from a candidate to predict its scan. Default 360.
-  double min_overlap = 0.5;           // fraction of a station's predicted returns already in the map. Default 0.5.
-  double unknown_depth = 6.0;         // m beyond a frontier counted as new area (a room's width). Default 6.
-  double area_value = 0.25;           // m of path cost one m^2 of new area is worth. Default 0.25.
-  double min_new_area = 5.0;          // m^2 a station must be expected to see new. Default 5.
-  double min_frontier_length = 1.0;   // m: shorter frontiers are gaps, not openings. Default 1.
-  double min_standoff = 2.0;          // m from a frontier's middle to the nearest candidate before it. Default 2.
-  double max_standoff = 12.0;         // m to the farthest. Default 12.
-  double standoff_step = 1.0;         // m, grid of the candidates before one frontier. Default 1.
+  double sensor_range = 30.0;        // m, the ladar's useful range in the prediction. Default 30.
+  int prediction_rays = 360;         // rays cast from a candidate to predict its scan. Default 360.
+  double min_overlap = 0.5;          // fraction of a station's predicted returns already in the map. Default 0.5.
+  double unknown_depth = 6.0;        // m beyond a frontier counted as new area (a room's width). Default 6.
+  double area_value = 0.25;          // m of path cost one m^2 of new area is worth. Default 0.25.
+  double min_new_area = 5.0;         // m^2 a station must be expected to see new. Default 5.
+  double min_frontier_length = 1.0;  // m: shorter frontiers are gaps, not openings. Default 1.
+  double min_standoff = 2.0;         // m from a frontier's middle to the nearest candidate before it. Default 2.
+  double max_standoff = 12.0;        // m to the farthest. Default 12.
+  double standoff_step = 1.0;        // m, grid of the candidates before one frontier. Default 1.
   // m: a candidate at least this far from every wall and frontier (a scan from the middle of
   // an entry sees its walls square on; one hugging a wall sees it edge-on). Default 1.5.
   double min_wall_distance = 1.5;
@@ -89,8 +89,10 @@ struct SurveyPlannerOptions {
   // frontiers: the 10 m miner's ends swing 0.44 m when it turns one of the path planner's
   // 5-degree heading bins, and the next scans move the walls a few centimetres. Default 0.45.
   double station_margin = 0.45;
-  double min_station_spacing = 3.0;   // m between a candidate and any visited station (and between intersections). Default 3.
-  double looked_distance = 4.0;       // m: a frontier a visited station saw from this near and still open is dropped. Default 4.
+  // m between a candidate and any visited station (and between intersections). Default 3.
+  double min_station_spacing = 3.0;
+  // m: a frontier a visited station saw from this near and still open is dropped. Default 4.
+  double looked_distance = 4.0;
   double intersection_spacing = 1.0;  // m, grid of the intersection search; 0 = no intersection candidates. Default 1.
   int max_plans = 24;                 // path plans per decision. Default 24.
   int tries_per_frontier = 2;         // candidates planned per frontier (the intersections count as one). Default 2.
@@ -102,9 +104,9 @@ std::string ValidateOptions(const SurveyPlannerOptions& options);
 void DeclareOptions(OptionScope scope, SurveyPlannerOptions& options);
 
 struct SurveyRequest {
-  Pose2 vehicle;                // where the vehicle is (it has scanned there)
-  double clearance = 0.0;       // m, the path keeps this from walls and frontiers
-  std::vector<Pose2> visited;   // stations scanned before
+  Pose2 vehicle;               // where the vehicle is (it has scanned there)
+  double clearance = 0.0;      // m, the path keeps this from walls and frontiers
+  std::vector<Pose2> visited;  // stations scanned before
 };
 
 // What a candidate station would see from `position` (PredictView).
@@ -117,33 +119,33 @@ struct PredictedView {
 
 struct StationCandidate {
   Pose2 pose;
-  int frontier = -1;           // index in SurveyDecision::frontiers; -1 for an intersection
-  double standoff = 0.0;       // m from the frontier's middle (frontier candidates)
+  int frontier = -1;      // index in SurveyDecision::frontiers; -1 for an intersection
+  double standoff = 0.0;  // m from the frontier's middle (frontier candidates)
   PredictedView view;
-  double bound = 0.0;          // m: straight-line distance - area_value x new area
-  bool feasible = false;       // passed the prediction (overlap, new area) and the footprint fits
+  double bound = 0.0;     // m: straight-line distance - area_value x new area
+  bool feasible = false;  // passed the prediction (overlap, new area) and the footprint fits
   bool planned = false;
-  double path_cost = 0.0;      // m, when reachable
-  double cost = 0.0;           // m: path_cost - area_value x new area, when reachable
-  std::string rejected;        // why it is no station ("" while it may be)
+  double path_cost = 0.0;  // m, when reachable
+  double cost = 0.0;       // m: path_cost - area_value x new area, when reachable
+  std::string rejected;    // why it is no station ("" while it may be)
 };
 
 struct FrontierState {
   Segment segment;
   size_t map_index = 0;  // in TaskMap::frontiers
-  std::string dropped;  // why no station is looked for before it ("" = open)
+  std::string dropped;   // why no station is looked for before it ("" = open)
 };
 
 struct SurveyDecision {
-  TaskPlan plan;                           // OK: one SCAN_STATION; COMPLETE or FAILED with the reason
-  std::vector<FrontierState> frontiers;    // the map's frontiers at least min_frontier_length long
-  int short_frontiers = 0;                 // frontiers shorter than that (ignored)
+  TaskPlan plan;                         // OK: one SCAN_STATION; COMPLETE or FAILED with the reason
+  std::vector<FrontierState> frontiers;  // the map's frontiers at least min_frontier_length long
+  int short_frontiers = 0;               // frontiers shorter than that (ignored)
   std::vector<StationCandidate> candidates;
-  std::optional<size_t> chosen;            // index into candidates
-  PlannedPath path;                        // from the vehicle to the chosen station
-  int frontiers_at_vehicle = 0;            // frontiers through the vehicle's footprint (dropped)
-  int plans = 0;                           // path plans made
-  int64_t expansions = 0;                  // their expansions
+  std::optional<size_t> chosen;  // index into candidates
+  PlannedPath path;              // from the vehicle to the chosen station
+  int frontiers_at_vehicle = 0;  // frontiers through the vehicle's footprint (dropped)
+  int plans = 0;                 // path plans made
+  int64_t expansions = 0;        // their expansions
 };
 
 SurveyDecision PlanNextStation(const TaskMap& map, const Footprint& footprint, const SurveyRequest& request,

@@ -11,14 +11,15 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <cstdlib>
 #include <cstdio>
+#include <cstdlib>
 #include <vector>
 
 #include "common/angle.h"
 #include "common/file_io.h"
 #include "planner/contour_free_space.h"
 #include "planner/task_plan_svg.h"
+#include "planner/test_maps.h"
 #include "planner/testing/path_checker.h"
 #include "planner/testing/survey_exploration.h"
 #include "sim/mine_generator.h"
@@ -30,20 +31,6 @@ using testing::SurveySimulation;
 
 // A compact ladar carrier (the demo's survey vehicle): it turns anywhere in a 6 m entry.
 Footprint Carrier() { return Footprint::Rectangle(1.2, 2.0); }
-
-testing::PathCheckSettings Settings(const Footprint& f, double clearance) {
-  testing::PathCheckSettings s;
-  s.polygon = f.vertices;
-  s.clearance = clearance;
-  s.sample_step = 0.02;
-  return s;
-}
-
-std::vector<testing::CheckedPiece> Pieces(const PlannedPath& path) {
-  std::vector<testing::CheckedPiece> out;
-  for (const MotionPiece& p : path.pieces) out.push_back({static_cast<int>(p.motion), p.end});
-  return out;
-}
 
 SurveyPlannerOptions Options(double range) {
   SurveyPlannerOptions o;
@@ -59,8 +46,8 @@ MineOptions SmallMine() {
 }
 
 // Everything a chosen station must be, against the truth.
-void ExpectGoodStation(const SurveySimulation& e, const TaskMap& map, const Footprint& footprint, const SurveyRequest& request,
-                       const SurveyDecision& d, const SurveyPlannerOptions& options) {
+void ExpectGoodStation(const SurveySimulation& e, const TaskMap& map, const Footprint& footprint,
+                       const SurveyRequest& request, const SurveyDecision& d, const SurveyPlannerOptions& options) {
   ASSERT_EQ(d.plan.status, PlanStatus::kOk) << d.plan.reason;
   ASSERT_EQ(d.plan.tasks.size(), 1u);
   const Task& t = d.plan.tasks[0];
@@ -85,10 +72,12 @@ void ExpectGoodStation(const SurveySimulation& e, const TaskMap& map, const Foot
   // (the request kept 0.1 m from the map; the map is a few cm off) and crosses no frontier.
   ASSERT_FALSE(d.path.pieces.empty());
   EXPECT_LT((d.path.pieces.back().end.translation() - p).norm(), 1e-6);
-  const auto on_world = testing::CheckPath(e.truth(), request.vehicle, Pieces(d.path), Settings(footprint, 0.03));
+  const auto on_world = testing::CheckPath(e.truth(), request.vehicle, planner_test::AsChecked(d.path),
+                                           planner_test::CheckSettings(footprint.vertices, 0.03));
   EXPECT_TRUE(on_world.ok) << on_world.problem;
   if (!map.frontiers.empty()) {
-    const auto on_frontiers = testing::CheckPath(map.frontiers, request.vehicle, Pieces(d.path), Settings(footprint, 0.0));
+    const auto on_frontiers = testing::CheckPath(map.frontiers, request.vehicle, planner_test::AsChecked(d.path),
+                                                 planner_test::CheckSettings(footprint.vertices, 0.0));
     EXPECT_TRUE(on_frontiers.ok) << on_frontiers.problem;
   }
 }
@@ -118,10 +107,17 @@ TEST(SurveyPlanner, ASmallWorldScannedWholeIsComplete) {
   // A room of 24 x 14 m with a pillar in it, seen whole from two stations at opposite
   // corners of the pillar (from its side, level with it, its top and bottom are edge-on:
   // they would stay unseen, behind frontiers).
-  SurveySimulation e({{0, 0, 24, 0}, {24, 0, 24, 14}, {24, 14, 0, 14}, {0, 14, 0, 0},  // counter-clockwise: seen from inside
-                      {10, 5, 10, 9}, {10, 9, 14, 9}, {14, 9, 14, 5}, {14, 5, 10, 5}},
+  SurveySimulation e({{0, 0, 24, 0},
+                      {24, 0, 24, 14},
+                      {24, 14, 0, 14},
+                      {0, 14, 0, 0},  // counter-clockwise: seen from inside
+                      {10, 5, 10, 9},
+                      {10, 9, 14, 9},
+                      {14, 9, 14, 5},
+                      {14, 5, 10, 5}},
                      15.0);
-  for (const Pose2& p : {Pose2(4.0, 3.0, 0.0), Pose2(20.0, 3.0, 0.0), Pose2(20.0, 11.0, 0.0)}) ASSERT_EQ(e.ScanAt(p), "");
+  for (const Pose2& p : {Pose2(4.0, 3.0, 0.0), Pose2(20.0, 3.0, 0.0), Pose2(20.0, 11.0, 0.0)})
+    ASSERT_EQ(e.ScanAt(p), "");
   const TaskMap map = e.Map();
   SurveyRequest request;
   request.vehicle = Pose2(20.0, 11.0, 0.0);
@@ -138,18 +134,19 @@ TEST(SurveyPlanner, AFrontierTheVehicleCannotReachEndsTheSurveyAndSaysWhy) {
   // room B through a doorway 1 m wide; room B opens into unknown space through a frontier.
   TaskMap map;
   map.oriented = true;
-  map.walls = {{0, 0, 20, 0},   {20, 0, 20, 4.5}, {20, 4.5, 20, 4.5}, {20, 5.5, 20, 10}, {20, 10, 0, 10},
-               {0, 10, 0, 0},                                                     // room A, door at x = 20
-               {20, 4.5, 21, 4.5}, {21, 4.5, 21, 0}, {21, 0, 40, 0}, {40, 0, 40, 3},  // room B below the door
-               {40, 7, 40, 10}, {40, 10, 21, 10}, {21, 10, 21, 5.5}, {21, 5.5, 20, 5.5}};
+  map.walls = {{0, 0, 20, 0},      {20, 0, 20, 4.5}, {20, 4.5, 20, 4.5}, {20, 5.5, 20, 10},
+               {20, 10, 0, 10},    {0, 10, 0, 0},                                         // room A, door at x = 20
+               {20, 4.5, 21, 4.5}, {21, 4.5, 21, 0}, {21, 0, 40, 0},     {40, 0, 40, 3},  // room B below the door
+               {40, 7, 40, 10},    {40, 10, 21, 10}, {21, 10, 21, 5.5},  {21, 5.5, 20, 5.5}};
   map.walls.erase(map.walls.begin() + 2);  // the zero-length piece
-  map.frontiers = {{40, 3, 40, 7}};         // room B's east side, not seen yet
+  map.frontiers = {{40, 3, 40, 7}};        // room B's east side, not seen yet
   SurveyRequest request;
   request.vehicle = Pose2(5.0, 5.0, 0.0);
   request.clearance = 0.1;
   const SurveyDecision d = PlanNextStation(map, Carrier(), request, Options(15.0), {});
   EXPECT_EQ(d.plan.status, PlanStatus::kComplete) << d.plan.reason;
-  EXPECT_EQ(d.plan.reason.rfind("no reachable frontier: 1 frontier left, none reachable: frontier 0 (4.0 m at (40.0, 5.0)) ", 0),
+  EXPECT_EQ(d.plan.reason.rfind(
+                "no reachable frontier: 1 frontier left, none reachable: frontier 0 (4.0 m at (40.0, 5.0)) ", 0),
             0u)
       << d.plan.reason;
   // The 1.2 m carrier's centre has no corridor through the 1 m door: known without a search.
@@ -175,7 +172,8 @@ TEST(SurveyPlanner, BadRequestsAreRefusedInOneLine) {
   EXPECT_EQ(PlanNextStation(empty, Carrier(), request, {}, {}).plan.reason, "the map has no walls yet");
   SurveyPlannerOptions bad;
   bad.min_overlap = 1.5;
-  EXPECT_EQ(PlanNextStation(empty, Carrier(), request, bad, {}).plan.reason, "bad options: min_overlap must be in [0, 1]");
+  EXPECT_EQ(PlanNextStation(empty, Carrier(), request, bad, {}).plan.reason,
+            "bad options: min_overlap must be in [0, 1]");
   request.vehicle.x = std::nan("");
   EXPECT_EQ(PlanNextStation(empty, Carrier(), request, {}, {}).plan.reason, "the vehicle pose is not finite");
 }
@@ -193,23 +191,24 @@ TEST(SurveyPlanner, ExploringASmallMineStationByStationCoversIt) {
       GenerateRoomAndPillarMine(mine), o, [&](const testing::SurveyStep& step, const SurveySimulation& sim) {
         // MINENAV_DUMP_SURVEY_SVG=PREFIX: a picture of each decision over the true walls.
         if (const char* dump = std::getenv("MINENAV_DUMP_SURVEY_SVG")) {
-          SvgScene scene = SurveyScene(step.map, Carrier(), step.request, step.decision,
-                                       "decision " + std::to_string(step.index));
+          SvgScene scene =
+              SurveyScene(step.map, Carrier(), step.request, step.decision, "decision " + std::to_string(step.index));
           scene.lines.insert(scene.lines.begin(), SvgLineLayer{"true walls", "#bbbbbb", 4.0, sim.truth(), {}});
           WriteFileAtomically(std::string(dump) + std::to_string(step.index) + ".svg", RenderSvg(scene));
         }
         if (step.decision.plan.status == PlanStatus::kOk)
           ExpectGoodStation(sim, step.map, Carrier(), step.request, step.decision, o.survey);
       });
-  std::printf("explored in %d stations: %.0f of %.0f m^2 truly free known free (%.1f %%), %.1f m^2 known but not free; "
-              "%.0f m driven; decisions %.0f ms median, %.0f ms max; %s\n",
-              r.stations, r.known_free_m2, r.true_free_m2, 100.0 * r.Coverage(), r.known_not_free_m2, r.path_length,
-              [&] {
-                std::vector<double> v = r.decision_ms;
-                std::sort(v.begin(), v.end());
-                return v[v.size() / 2];
-              }(),
-              *std::max_element(r.decision_ms.begin(), r.decision_ms.end()), r.final_reason.c_str());
+  std::printf(
+      "explored in %d stations: %.0f of %.0f m^2 truly free known free (%.1f %%), %.1f m^2 known but not free; "
+      "%.0f m driven; decisions %.0f ms median, %.0f ms max; %s\n",
+      r.stations, r.known_free_m2, r.true_free_m2, 100.0 * r.Coverage(), r.known_not_free_m2, r.path_length,
+      [&] {
+        std::vector<double> v = r.decision_ms;
+        std::sort(v.begin(), v.end());
+        return v[v.size() / 2];
+      }(),
+      *std::max_element(r.decision_ms.begin(), r.decision_ms.end()), r.final_reason.c_str());
   EXPECT_EQ(r.final_status, PlanStatus::kComplete) << r.final_reason;
   EXPECT_TRUE(r.refused_scans.empty()) << r.refused_scans.front();
   // The requirement: the mine covered (95 % of its free space known, the rest is the band

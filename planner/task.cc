@@ -10,31 +10,44 @@ namespace minenav {
 
 std::string ToString(TaskKind kind) {
   switch (kind) {
-    case TaskKind::kMove: return "move";
-    case TaskKind::kBoxCut: return "box_cut";
-    case TaskKind::kSlabCut: return "slab_cut";
-    case TaskKind::kBackOut: return "back_out";
-    case TaskKind::kScanStation: return "scan_station";
-    case TaskKind::kTurn: return "turn";
-    case TaskKind::kWait: return "wait";
+    case TaskKind::kMove:
+      return "move";
+    case TaskKind::kBoxCut:
+      return "box_cut";
+    case TaskKind::kSlabCut:
+      return "slab_cut";
+    case TaskKind::kBackOut:
+      return "back_out";
+    case TaskKind::kScanStation:
+      return "scan_station";
+    case TaskKind::kTurn:
+      return "turn";
+    case TaskKind::kWait:
+      return "wait";
   }
   return "unknown";
 }
 
 std::string ToString(PlanStatus status) {
   switch (status) {
-    case PlanStatus::kOk: return "ok";
-    case PlanStatus::kComplete: return "complete";
-    case PlanStatus::kFailed: return "failed";
+    case PlanStatus::kOk:
+      return "ok";
+    case PlanStatus::kComplete:
+      return "complete";
+    case PlanStatus::kFailed:
+      return "failed";
   }
   return "unknown";
 }
 
 std::string ToString(Appendages appendages) {
   switch (appendages) {
-    case Appendages::kAny: return "any";
-    case Appendages::kStowed: return "stowed";
-    case Appendages::kCutting: return "cutting";
+    case Appendages::kAny:
+      return "any";
+    case Appendages::kStowed:
+      return "stowed";
+    case Appendages::kCutting:
+      return "cutting";
   }
   return "unknown";
 }
@@ -66,8 +79,8 @@ double SegmentPolygonDistance(const Segment& s, const std::vector<Eigen::Vector2
   for (size_t k = 0; k < polygon.size(); ++k) {
     const Segment edge(polygon[k], polygon[(k + 1) % polygon.size()]);
     if (SegmentIntersection(s, edge)) return 0.0;
-    d = std::min({d, PointToSegmentDistance(s.a, edge), PointToSegmentDistance(s.b, edge),
-                  PointToSegmentDistance(edge.a, s)});
+    d = std::min(
+        {d, PointToSegmentDistance(s.a, edge), PointToSegmentDistance(s.b, edge), PointToSegmentDistance(edge.a, s)});
   }
   return d;
 }
@@ -82,8 +95,10 @@ TaskMap WithoutFrontiersAt(const TaskMap& map, const Footprint& footprint, const
   out.frontiers.clear();
   int n = 0;
   for (const Segment& f : map.frontiers) {
-    if (SegmentPolygonDistance(f, polygon) < margin) ++n;
-    else out.frontiers.push_back(f);
+    if (SegmentPolygonDistance(f, polygon) < margin)
+      ++n;
+    else
+      out.frontiers.push_back(f);
   }
   if (dropped != nullptr) *dropped = n;
   return out;

@@ -59,13 +59,13 @@ std::string PoseText(const Pose2& pose);
 struct Task {
   int64_t id = 0;
   TaskKind kind = TaskKind::kMove;
-  Pose2 target;            // m, m, rad, map frame: where the task drives to, or cuts from (squared up)
-  double depth = 0.0;      // m, cut depth into the face (cuts)
-  double width = 0.0;      // m, new width the cut takes out of the face (cuts)
-  int64_t depends_on = -1; // id of the task that must finish first, -1 for none
-  std::string description; // one line for people
-  Segment face;            // m, the face as the drum meets it (cuts), free space on its left; zero otherwise
-  double clearance = 0.0;  // m, least distance from the vehicle polygon to the walls on the way (driving tasks)
+  Pose2 target;             // m, m, rad, map frame: where the task drives to, or cuts from (squared up)
+  double depth = 0.0;       // m, cut depth into the face (cuts)
+  double width = 0.0;       // m, new width the cut takes out of the face (cuts)
+  int64_t depends_on = -1;  // id of the task that must finish first, -1 for none
+  std::string description;  // one line for people
+  Segment face;             // m, the face as the drum meets it (cuts), free space on its left; zero otherwise
+  double clearance = 0.0;   // m, least distance from the vehicle polygon to the walls on the way (driving tasks)
   bool allow_reverse = false;
   Appendages appendages = Appendages::kAny;
 };

@@ -35,13 +35,15 @@ task_t TaskToLcm(const Task& t) {
 
 Task TaskFromLcm(const task_t& m) {
   const std::string where = "task " + std::to_string(m.task_id) + ": ";
-  if (m.kind < task_t::MOVE || m.kind > task_t::WAIT) throw InputError(where + "unknown kind " + std::to_string(m.kind));
+  if (m.kind < task_t::MOVE || m.kind > task_t::WAIT)
+    throw InputError(where + "unknown kind " + std::to_string(m.kind));
   if (m.appendages < task_t::APPENDAGES_ANY || m.appendages > task_t::APPENDAGES_CUTTING)
     throw InputError(where + "unknown appendages " + std::to_string(m.appendages));
   if (!Finite(m.target)) throw InputError(where + "target is not finite");
   if (!std::isfinite(m.depth) || m.depth < 0.0) throw InputError(where + "depth is not a finite value >= 0");
   if (!std::isfinite(m.width) || m.width < 0.0) throw InputError(where + "width is not a finite value >= 0");
-  if (!std::isfinite(m.clearance) || m.clearance < 0.0) throw InputError(where + "clearance is not a finite value >= 0");
+  if (!std::isfinite(m.clearance) || m.clearance < 0.0)
+    throw InputError(where + "clearance is not a finite value >= 0");
   if (!std::isfinite(m.face.x1) || !std::isfinite(m.face.y1) || !std::isfinite(m.face.x2) || !std::isfinite(m.face.y2))
     throw InputError(where + "face is not finite");
   Task t;
@@ -118,7 +120,8 @@ TaskRequest TaskRequestFromLcm(const task_request_t& m) {
   r.clearance = m.clearance;
   if (r.kind == TaskRequestKind::kAdvance) {
     if (!Finite(m.face)) throw InputError("face is not finite");
-    if (!std::isfinite(m.depth) || m.depth <= 0.0) throw InputError("depth " + std::to_string(m.depth) + " m is not > 0");
+    if (!std::isfinite(m.depth) || m.depth <= 0.0)
+      throw InputError("depth " + std::to_string(m.depth) + " m is not > 0");
     r.face = FromLcm(m.face);
   }
   return r;

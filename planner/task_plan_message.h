@@ -35,9 +35,9 @@ struct TaskRequest {
   int64_t request_id = 0;
   std::string mission_id;
   TaskRequestKind kind = TaskRequestKind::kSurveyNext;
-  Pose2 pose;         // the vehicle (map frame)
-  Pose2 face;         // ADVANCE: a point in front of the face and the direction of advance
-  double depth = 0.0; // m, ADVANCE
+  Pose2 pose;              // the vehicle (map frame)
+  Pose2 face;              // ADVANCE: a point in front of the face and the direction of advance
+  double depth = 0.0;      // m, ADVANCE
   double clearance = 0.0;  // m
 };
 // "survey_next", "advance".

@@ -1,8 +1,8 @@
 #include "planner/task_plan_svg.h"
 
 #include <algorithm>
-#include <iterator>
 #include <cmath>
+#include <iterator>
 #include <vector>
 
 #include "planner/path_svg.h"
@@ -17,11 +17,16 @@ SvgPolyline Outline(const Footprint& footprint, const Pose2& pose) {
 }
 
 // A dashed two-pose trajectory per segment (how PathScene draws frontiers); the first labelled.
-void AddDashed(SvgScene& scene, const std::vector<Segment>& segments, const std::string& label, const std::string& color) {
+void AddDashed(SvgScene& scene, const std::vector<Segment>& segments, const std::string& label,
+               const std::string& color) {
   for (size_t k = 0; k < segments.size(); ++k)
-    scene.trajectories.push_back({k == 0 ? label : "", color, 1.5, true, false,
-                                  {Pose2(segments[k].a.x(), segments[k].a.y(), 0.0),
-                                   Pose2(segments[k].b.x(), segments[k].b.y(), 0.0)}});
+    scene.trajectories.push_back(
+        {k == 0 ? label : "",
+         color,
+         1.5,
+         true,
+         false,
+         {Pose2(segments[k].a.x(), segments[k].a.y(), 0.0), Pose2(segments[k].b.x(), segments[k].b.y(), 0.0)}});
 }
 
 }  // namespace
@@ -43,12 +48,15 @@ SvgScene SurveyScene(const TaskMap& map, const Footprint& footprint, const Surve
   AddDashed(scene, open, "open frontiers", "#d62728");
   AddDashed(scene, dropped, "frontiers seen close up and still open (gaps)", "#7f7f7f");
   AddDashed(scene, short_ones, "gaps shorter than min_frontier_length", "#c7c7c7");
-  SvgPointLayer possible{"candidate stations (overlap and new area enough, the footprint fits)", "#1f77b4", 2.5, 0.9, {}};
+  SvgPointLayer possible{
+      "candidate stations (overlap and new area enough, the footprint fits)", "#1f77b4", 2.5, 0.9, {}};
   SvgPointLayer rejected{"rejected candidates (overlap, new area, footprint)", "#aaaaaa", 1.8, 0.7, {}};
   SvgPointLayer crossings{"intersection candidates", "#9467bd", 3.0, 0.9, {}};
   for (const StationCandidate& c : d.candidates) {
-    if (c.frontier < 0) crossings.points.push_back(c.pose.translation());
-    else (c.feasible ? possible : rejected).points.push_back(c.pose.translation());
+    if (c.frontier < 0)
+      crossings.points.push_back(c.pose.translation());
+    else
+      (c.feasible ? possible : rejected).points.push_back(c.pose.translation());
   }
   scene.points.push_back(rejected);
   scene.points.push_back(possible);

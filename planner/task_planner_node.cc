@@ -11,6 +11,7 @@
 #include "common/node/conversions.h"
 #include "minenav/heartbeat_t.hpp"
 #include "minenav/pose_estimate_t.hpp"
+#include "planner/contour_map_contours.h"
 
 namespace minenav {
 
@@ -66,14 +67,15 @@ void DeclareOptions(ConfigSchema& s, TaskPlannerNodeOptions& o) {
   s.AddChannel("plan_channel", &o.plan_channel, "publishes", "task_plan_t", "the answers, tagged with the request_id");
   s.AddString("footprint", &o.footprint,
               "W,L (m: a rectangle centred on the pose, x along L) or a JSON file {\"footprint\": [[x, y], ...]}");
-  s.AddDouble("deadline", &o.deadline, "s", "live: wall time the path-planner searches of one plan may take", 0.001, 3600.0);
+  s.AddDouble("deadline", &o.deadline, "s", "live: wall time the path-planner searches of one plan may take", 0.001,
+              3600.0);
   s.AddDouble("default_clearance", &o.default_clearance, "m", "clearance of a request that gives 0", 0.0, 10.0);
   s.AddDouble("max_clearance", &o.max_clearance, "m", "larger requested clearances are refused", 0.0, 10.0);
   s.AddDouble("trail_spacing", &o.trail_spacing, "m",
               "between the POSE positions kept as places the ladar looked from; 0 = none", 0.0, 1000.0);
   s.AddInt("max_trail", &o.max_trail, "POSE positions kept (the oldest go first)", 1, 1'000'000);
-  s.AddInt("plan_queue", &o.queue_capacity, "live: requests that may wait for planning; a full queue drops the oldest", 1,
-           1000);
+  s.AddInt("plan_queue", &o.queue_capacity, "live: requests that may wait for planning; a full queue drops the oldest",
+           1, 1000);
   s.AddInt("answers_kept", &o.answers_kept, "answers remembered by request_id (a repeat is answered from memory)", 1,
            1'000'000);
   s.AddDouble("poll_period", &o.poll_period, "s", "live: period of the look for finished plans", 0.001, 1.0);
@@ -157,8 +159,8 @@ void TaskPlannerNode::OnRequest(const task_request_t& m) {
   try {
     r = TaskRequestFromLcm(m);
     if (r.clearance > options_.max_clearance)
-      throw InputError("clearance " + FixedNumber(r.clearance) + " m is not in [0, " + FixedNumber(options_.max_clearance) +
-                       "] (max_clearance)");
+      throw InputError("clearance " + FixedNumber(r.clearance) + " m is not in [0, " +
+                       FixedNumber(options_.max_clearance) + "] (max_clearance)");
   } catch (const InputError& e) {
     refuse(std::string("invalid request: ") + e.what());
     throw;  // counted in HEARTBEAT messages_bad
@@ -167,14 +169,15 @@ void TaskPlannerNode::OnRequest(const task_request_t& m) {
   if (r.kind == TaskRequestKind::kAdvance && line_map_) map = line_map_;
   if (!map) {
     const std::string channels =
-        options_.map_channel +
-        (r.kind == TaskRequestKind::kAdvance && !options_.line_map_channel.empty() ? " or " + options_.line_map_channel : "");
+        options_.map_channel + (r.kind == TaskRequestKind::kAdvance && !options_.line_map_channel.empty()
+                                    ? " or " + options_.line_map_channel
+                                    : "");
     refuse("no map: nothing received on " + channels + " yet");
     return;
   }
   Job job{r, map, visited_, plan_id};
   if (r.kind == TaskRequestKind::kSurveyNext) visited_.push_back(r.pose);  // it scanned where it asks from
-  if (!worker_) {  // batch: plan here, repeatably
+  if (!worker_) {                                                          // batch: plan here, repeatably
     Publish(Plan(job).message, true);
     return;
   }
@@ -192,13 +195,7 @@ void TaskPlannerNode::OnContourMap(const contour_map_t& m) {
   if (contour_map_ && map.version == contour_map_->version) return;
   auto snapshot = std::make_shared<MapSnapshot>();
   snapshot->version = map.version;
-  for (ContourPolyline& c : map.contours) {
-    mapper::Contour contour;
-    contour.id = static_cast<int>(c.id);
-    contour.closed = c.closed;
-    contour.points = std::move(c.points);
-    snapshot->contours.push_back(std::move(contour));
-  }
+  snapshot->contours = ContoursOf(std::move(map));
   contour_map_ = std::move(snapshot);
 }
 
@@ -267,8 +264,8 @@ TaskPlannerNode::Answer TaskPlannerNode::Plan(Job& job) {
     answer.plan = PlanNextStation(cache.map, footprint_, s, options_.survey, options_.planner, limits).plan;
   }
   if (deadline_passed && answer.plan.status == PlanStatus::kFailed)
-    answer.plan.reason = "deadline: planning was stopped at " + FixedNumber(options_.deadline, 3) + " s: " +
-                         answer.plan.reason;
+    answer.plan.reason =
+        "deadline: planning was stopped at " + FixedNumber(options_.deadline, 3) + " s: " + answer.plan.reason;
   const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   MINENAV_LOG(kInfo) << "request " << r.request_id << " (" << ToString(r.kind) << ", " << job.map->Name() << ", "
                      << FixedNumber(ms, 1) << " ms): " << ToString(answer.plan.status) << ": " << answer.plan.reason;

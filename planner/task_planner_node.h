@@ -48,8 +48,8 @@
 #include "planner/contour_free_space.h"
 #include "planner/footprint.h"
 #include "planner/planner_batch.h"
-#include "planner/search_limits.h"
 #include "planner/se2_planner.h"
+#include "planner/search_limits.h"
 #include "planner/survey_planner.h"
 #include "planner/task_plan_message.h"
 
@@ -58,23 +58,23 @@ namespace minenav {
 struct TaskPlannerNodeOptions {
   std::string request_channel = "TASK_REQUEST";
   std::string map_channel = "CONTOUR_MAP";
-  std::string line_map_channel;     // "" = not subscribed; else ADVANCE plans on the latest LINE_MAP there. Default "".
+  std::string line_map_channel;  // "" = not subscribed; else ADVANCE plans on the latest LINE_MAP there. Default "".
   std::string pose_channel = "POSE";
   std::string plan_channel = "TASK_PLAN";
   // "W,L" (m: a rectangle centred on the pose) or a footprint JSON file: the path planner's
   // --footprint, the 3.3 x 10 m miner by default.
   std::string footprint = PlannerBatchFlags{}.footprint;
-  double deadline = 5.0;            // s of wall time the path-planner searches of one plan may take (live). Default 5.
-  double default_clearance = 0.1;   // m, used when a request's clearance is 0. Default 0.1.
-  double max_clearance = 2.0;       // m, larger requested clearances are refused. Default 2.
-  double trail_spacing = 2.0;       // m between the POSE positions kept as places scanned from; 0 = none. Default 2.
-  int max_trail = 2000;             // positions kept (the oldest go first). Default 2000.
-  int queue_capacity = 4;           // --plan-queue: requests that may wait for the worker. Default 4.
-  int answers_kept = 256;           // answers remembered by request_id (the oldest go first). Default 256.
-  double poll_period = 0.02;        // s between looks at the worker's answers. Default 0.02.
+  double deadline = 5.0;           // s of wall time the path-planner searches of one plan may take (live). Default 5.
+  double default_clearance = 0.1;  // m, used when a request's clearance is 0. Default 0.1.
+  double max_clearance = 2.0;      // m, larger requested clearances are refused. Default 2.
+  double trail_spacing = 2.0;      // m between the POSE positions kept as places scanned from; 0 = none. Default 2.
+  int max_trail = 2000;            // positions kept (the oldest go first). Default 2000.
+  int queue_capacity = 4;          // --plan-queue: requests that may wait for the worker. Default 4.
+  int answers_kept = 256;          // answers remembered by request_id (the oldest go first). Default 256.
+  double poll_period = 0.02;       // s between looks at the worker's answers. Default 0.02.
   AdvanceOptions advance;
   SurveyPlannerOptions survey;
-  Se2PlannerOptions planner;        // planner.clearance is replaced by the request's
+  Se2PlannerOptions planner;  // planner.clearance is replaced by the request's
   SearchLimits search;
   FreeSpaceOptions free_space;
 };
@@ -117,7 +117,7 @@ class TaskPlannerNode {
   TaskPlannerNodeOptions options_;
   Footprint footprint_;
   std::shared_ptr<const MapSnapshot> contour_map_, line_map_;
-  std::vector<Pose2> visited_;     // places the ladar looked from
+  std::vector<Pose2> visited_;               // places the ladar looked from
   std::map<int64_t, task_plan_t> answered_;  // by request_id
   std::deque<int64_t> answered_order_;       // oldest first
   std::set<int64_t> pending_;                // request_ids being planned

@@ -18,6 +18,7 @@
 #include "common/node/fake_runtime.h"
 #include "common/node/map_updates.h"
 #include "minenav/pose_estimate_t.hpp"
+#include "planner/test_maps.h"
 #include "planner/testing/path_checker.h"
 
 namespace minenav {
@@ -37,7 +38,8 @@ std::vector<Segment> Closed(const std::vector<Eigen::Vector2d>& points) {
   return s;
 }
 
-contour_map_t MapMessage(int64_t version, std::vector<ContourPolyline> contours, int compress_above = kContourMapCompressAbove) {
+contour_map_t MapMessage(int64_t version, std::vector<ContourPolyline> contours,
+                         int compress_above = kContourMapCompressAbove) {
   ContourMapMessage m;
   m.utime = kT0;
   m.version = version;
@@ -105,23 +107,19 @@ std::vector<TaskKind> Kinds(const TaskPlan& plan) {
 
 // Each driving task reachable from where the one before leaves the vehicle, judged by the
 // independent checker on `walls` (Se2Planner run here).
-void ExpectManeuversReachable(const std::vector<Segment>& walls, const Pose2& start, const TaskPlan& plan, double clearance) {
+void ExpectManeuversReachable(const std::vector<Segment>& walls, const Pose2& start, const TaskPlan& plan,
+                              double clearance) {
   Se2PlannerOptions po;
   po.clearance = clearance;
   const Footprint miner = Footprint::Rectangle(3.3, 10.0);
   const Se2Planner planner(walls, miner, po);
-  testing::PathCheckSettings settings;
-  settings.polygon = miner.vertices;
-  settings.clearance = clearance;
-  settings.sample_step = 0.05;
+  const testing::PathCheckSettings settings = planner_test::CheckSettings(miner.vertices, clearance, 0.05);
   Pose2 from = start;
   for (const Task& t : plan.tasks) {
     if (t.kind != TaskKind::kMove && t.kind != TaskKind::kBackOut) continue;
     const Se2PlanResult r = planner.Plan(from, t.target);
     ASSERT_EQ(r.status, SearchStatus::kFound) << t.description << ": " << r.reason;
-    std::vector<testing::CheckedPiece> pieces;
-    for (const MotionPiece& p : r.path.pieces) pieces.push_back({static_cast<int>(p.motion), p.end});
-    const auto report = testing::CheckPath(walls, from, pieces, settings);
+    const auto report = testing::CheckPath(walls, from, planner_test::AsChecked(r.path), settings);
     EXPECT_TRUE(report.ok) << t.description << ": " << report.problem;
     from = t.target;
   }
@@ -140,9 +138,11 @@ TEST(TaskPlannerNode, AnAdvanceIsAnsweredWithTheCutsTaggedWithItsIdAndEveryManeu
   ASSERT_EQ(p.plan.status, PlanStatus::kOk) << p.plan.reason;
   EXPECT_EQ(Kinds(p.plan), (std::vector<TaskKind>{TaskKind::kMove, TaskKind::kBoxCut, TaskKind::kMove,
                                                   TaskKind::kSlabCut, TaskKind::kBackOut}));
-  EXPECT_EQ(p.plan.reason.rfind("advance the 6.50 m entry 1.00 m: box cut 3.30 m on the right, 1 slab cut of 2.10 m", 0), 0u)
+  EXPECT_EQ(
+      p.plan.reason.rfind("advance the 6.50 m entry 1.00 m: box cut 3.30 m on the right, 1 slab cut of 2.10 m", 0), 0u)
       << p.plan.reason;
-  for (size_t k = 0; k < p.plan.tasks.size(); ++k) EXPECT_EQ(p.plan.tasks[k].depends_on, k == 0 ? -1 : static_cast<int64_t>(k));
+  for (size_t k = 0; k < p.plan.tasks.size(); ++k)
+    EXPECT_EQ(p.plan.tasks[k].depends_on, k == 0 ? -1 : static_cast<int64_t>(k));
   EXPECT_EQ(p.plan.tasks[1].appendages, Appendages::kCutting);
   EXPECT_EQ(p.plan.tasks[4].appendages, Appendages::kStowed);
   ExpectManeuversReachable(Closed(EntryOutline()), {18, 0, 0}, p.plan, 0.1);
@@ -152,7 +152,8 @@ TEST(TaskPlannerNode, ARepeatedRequestIdGetsTheSamePlanWithoutPlanningAgain) {
   Harness h;
   h.fake.bus().InjectMessage("CONTOUR_MAP", MapMessage(1, {Poly(EntryOutline(), true)}));
   h.fake.bus().InjectMessage("TASK_REQUEST", Advance(3, {18, 0, 0}, {36, 0, 0}));
-  h.fake.bus().InjectMessage("TASK_REQUEST", Advance(3, {18, 0, 0}, {36, 0, 0}));  // while it is planned: not queued again
+  h.fake.bus().InjectMessage("TASK_REQUEST",
+                             Advance(3, {18, 0, 0}, {36, 0, 0}));  // while it is planned: not queued again
   ASSERT_EQ(h.WaitForPlans(1).size(), 1u);
   h.WaitForPlans(2, 0.3);
   EXPECT_EQ(h.fake.bus().PublishedOn("TASK_PLAN").size(), 1u);
@@ -214,7 +215,8 @@ TEST(TaskPlannerNode, EveryBadRequestIsAnsweredFailedInOneLineAndCountedBad) {
   task_request_t depth = Advance(5, {18, 0, 0}, {36, 0, 0}, 0.0);
   task_request_t clearance = Advance(6, {18, 0, 0}, {36, 0, 0}, 1.0, 5.0);
   task_request_t deep = Advance(7, {18, 0, 0}, {36, 0, 0}, 50.0);  // valid message, refused by the planner
-  for (const auto& r : {kind, nan_pose, nan_face, depth, clearance, deep}) h.fake.bus().InjectMessage("TASK_REQUEST", r);
+  for (const auto& r : {kind, nan_pose, nan_face, depth, clearance, deep})
+    h.fake.bus().InjectMessage("TASK_REQUEST", r);
   const std::vector<task_plan_t> plans = h.WaitForPlans(7);
   ASSERT_EQ(plans.size(), 7u);
   const char* expected[] = {"no map: nothing received on CONTOUR_MAP yet",
@@ -267,7 +269,8 @@ TEST(TaskPlannerNode, AZlibMapALineMapAndTheDeadline) {
   plans = late.WaitForPlans(1);
   ASSERT_EQ(plans.size(), 1u);
   EXPECT_EQ(plans[0].status, task_plan_t::FAILED);
-  EXPECT_EQ(plans[0].reason.rfind("deadline: planning was stopped at 0.001 s: move into position for the box cut: ", 0), 0u)
+  EXPECT_EQ(plans[0].reason.rfind("deadline: planning was stopped at 0.001 s: move into position for the box cut: ", 0),
+            0u)
       << plans[0].reason;
 }
 

@@ -27,9 +27,10 @@ TEST(TaskPlannerProcess, HelpNamesTheChannelsAndABadFlagExits2InOneLine) {
   const testing::TempDir dir("task_planner_process");
   const testing::ProgramRun help = RunTaskPlanner({"--help"}, dir / "help.txt");
   EXPECT_EQ(help.exit_code, 0);
-  for (const char* channel : {"subscribes task_request_t on 'TASK_REQUEST'", "subscribes contour_map_t on 'CONTOUR_MAP'",
-                              "subscribes line_map_t", "subscribes pose_estimate_t on 'POSE'",
-                              "publishes task_plan_t on 'TASK_PLAN'", "publishes heartbeat_t on 'HEARTBEAT'"})
+  for (const char* channel :
+       {"subscribes task_request_t on 'TASK_REQUEST'", "subscribes contour_map_t on 'CONTOUR_MAP'",
+        "subscribes line_map_t", "subscribes pose_estimate_t on 'POSE'", "publishes task_plan_t on 'TASK_PLAN'",
+        "publishes heartbeat_t on 'HEARTBEAT'"})
     EXPECT_NE(help.output.find(channel), std::string::npos) << channel;
   EXPECT_EQ(help.output.find("SIM_TRUTH"), std::string::npos);
   const testing::ProgramRun bad = RunTaskPlanner({"--footprint", "0,10"}, dir / "bad.txt");

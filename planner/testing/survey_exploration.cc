@@ -44,16 +44,16 @@ double SurveySimulation::TrueOverlap(const TaskMap& map, const Pose2& pose) cons
   for (const Eigen::Vector2d& p : ScanPointsInWorld(scan, pose)) {
     ++valid;
     bool near = false;
-    walls.ForEachNear(p, 0.3, [&](int i) {
-      near = near || PointToSegmentDistance(p, map.walls[static_cast<size_t>(i)]) < 0.3;
-    });
+    walls.ForEachNear(
+        p, 0.3, [&](int i) { near = near || PointToSegmentDistance(p, map.walls[static_cast<size_t>(i)]) < 0.3; });
     on_map += near ? 1 : 0;
   }
   return valid > 0 ? static_cast<double>(on_map) / valid : 0.0;
 }
 
-SurveyExplorationResult ExploreBySurvey(const std::vector<Segment>& world, const SurveyExplorationOptions& o,
-                                        const std::function<void(const SurveyStep&, const SurveySimulation&)>& on_step) {
+SurveyExplorationResult ExploreBySurvey(
+    const std::vector<Segment>& world, const SurveyExplorationOptions& o,
+    const std::function<void(const SurveyStep&, const SurveySimulation&)>& on_step) {
   SurveySimulation sim(world, o.sensor_range);
   SurveyExplorationResult result;
   SurveyRequest request;

@@ -55,10 +55,10 @@ class SurveySimulation {
 
 struct SurveyExplorationOptions {
   Footprint footprint = Footprint::Rectangle(1.2, 2.0);  // the vehicle
-  Pose2 start;                  // the first station (scanned before the first decision)
-  Eigen::Vector2d inside = Eigen::Vector2d::Zero();  // a truly free point (the coverage's reference)
-  double sensor_range = 15.0;   // m
-  double clearance = 0.1;       // m, the requests'
+  Pose2 start;                                           // the first station (scanned before the first decision)
+  Eigen::Vector2d inside = Eigen::Vector2d::Zero();      // a truly free point (the coverage's reference)
+  double sensor_range = 15.0;                            // m
+  double clearance = 0.1;                                // m, the requests'
   int max_stations = 40;
   double coverage_cell = 0.25;  // m
   SurveyPlannerOptions survey;
@@ -67,15 +67,15 @@ struct SurveyExplorationOptions {
 
 // One decision of the survey.
 struct SurveyStep {
-  int index = 0;               // 1, 2, ...
-  TaskMap map;                 // the map it was made on
+  int index = 0;  // 1, 2, ...
+  TaskMap map;    // the map it was made on
   SurveyRequest request;
   SurveyDecision decision;
-  double seconds = 0.0;        // thread CPU of PlanNextStation
+  double seconds = 0.0;  // thread CPU of PlanNextStation
 };
 
 struct SurveyExplorationResult {
-  int stations = 0;                 // scans taken (the start included)
+  int stations = 0;  // scans taken (the start included)
   PlanStatus final_status = PlanStatus::kFailed;
   std::string final_reason;
   std::vector<Pose2> visited;       // every station, the start first
@@ -83,14 +83,15 @@ struct SurveyExplorationResult {
   double path_length = 0.0;         // m, driven between stations (the planned paths)
   double known_free_m2 = 0.0;       // known free and truly free
   double true_free_m2 = 0.0;
-  double known_not_free_m2 = 0.0;   // known free but truly not (the map's error at walls)
+  double known_not_free_m2 = 0.0;          // known free but truly not (the map's error at walls)
   std::vector<std::string> refused_scans;  // the mapper's reasons
   double Coverage() const { return true_free_m2 > 0.0 ? known_free_m2 / true_free_m2 : 0.0; }
 };
 
 // Runs the survey from options.start; `on_step` (may be empty) sees every decision before the
 // vehicle moves.
-SurveyExplorationResult ExploreBySurvey(const std::vector<Segment>& world, const SurveyExplorationOptions& options,
-                                        const std::function<void(const SurveyStep&, const SurveySimulation&)>& on_step = {});
+SurveyExplorationResult ExploreBySurvey(
+    const std::vector<Segment>& world, const SurveyExplorationOptions& options,
+    const std::function<void(const SurveyStep&, const SurveySimulation&)>& on_step = {});
 
 }  // namespace minenav::testing
