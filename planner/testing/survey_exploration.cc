@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "common/angle.h"
+
 #include "common/node/cpu_time.h"
 #include "common/scan.h"
 #include "planner/contour_free_space.h"
@@ -12,16 +14,18 @@ namespace {
 
 constexpr int64_t kT0 = 1'000'000'000'000'000;
 
-LadarModel Model(double range) {
+LadarModel Model(double range, int points) {
   LadarModel m = LadarModel::Typhoon();
   m.max_range = range;
+  m.num_points = points;
+  m.angular_resolution = 2.0 * kPi / points;
   return m;
 }
 
 }  // namespace
 
-SurveySimulation::SurveySimulation(std::vector<Segment> world, double sensor_range, uint64_t seed)
-    : world_(world), truth_(world), index_(std::move(world)), simulator_(Model(sensor_range), seed) {}
+SurveySimulation::SurveySimulation(std::vector<Segment> world, double sensor_range, int scan_points, uint64_t seed)
+    : world_(world), truth_(world), index_(std::move(world)), simulator_(Model(sensor_range, scan_points), seed) {}
 
 std::string SurveySimulation::ScanAt(const Pose2& pose) {
   const LadarScan scan = simulator_.Simulate(index_, pose, Pose2(), kT0 + scans_ * 1'000'000, scans_);
@@ -54,7 +58,7 @@ double SurveySimulation::TrueOverlap(const TaskMap& map, const Pose2& pose) cons
 SurveyExplorationResult ExploreBySurvey(
     const std::vector<Segment>& world, const SurveyExplorationOptions& o,
     const std::function<void(const SurveyStep&, const SurveySimulation&)>& on_step) {
-  SurveySimulation sim(world, o.sensor_range);
+  SurveySimulation sim(world, o.sensor_range, o.scan_points);
   SurveyExplorationResult result;
   SurveyRequest request;
   request.vehicle = o.start;

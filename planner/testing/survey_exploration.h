@@ -2,7 +2,7 @@
 // A survey in simulation, for the task planner's tests and bench (this library links sim/,
 // the ladar simulation and the mapper: never the planner's own targets). A true world of
 // segments; 360-degree scans ray-cast from the true pose (the Typhoon model, range cut to
-// `sensor_range`); the contour mapper (mapper/contour_mapper.h) inserting each with its true
+// `sensor_range`, `scan_points` readings); the contour mapper (mapper/contour_mapper.h) inserting each with its true
 // pose as the initial estimate; the task planner choosing each next station on the mapper's
 // contour map (PlanNextStation) until it answers COMPLETE (or FAILED, or max_stations).
 //
@@ -30,7 +30,8 @@ namespace minenav::testing {
 // The true world and the mapper that maps it from simulated scans at true poses.
 class SurveySimulation {
  public:
-  SurveySimulation(std::vector<Segment> world, double sensor_range, uint64_t seed = 7);
+  // `scan_points` readings per revolution (the Typhoon's 2048 by default).
+  SurveySimulation(std::vector<Segment> world, double sensor_range, int scan_points = 2048, uint64_t seed = 7);
   // A scan at the true pose, inserted with the true pose as its initial estimate: "" when
   // the mapper accepted it, else its reason.
   std::string ScanAt(const Pose2& pose);
@@ -57,6 +58,7 @@ struct SurveyExplorationOptions {
   Footprint footprint = Footprint::Rectangle(1.2, 2.0);  // the vehicle
   Pose2 start;                                           // the first station (scanned before the first decision)
   Eigen::Vector2d inside = Eigen::Vector2d::Zero();      // a truly free point (the coverage's reference)
+  int scan_points = 2048;       // readings per scan
   double sensor_range = 15.0;                            // m
   double clearance = 0.1;                                // m, the requests'
   int max_stations = 40;
