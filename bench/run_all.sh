@@ -48,6 +48,7 @@ benches=(
   "mapper_dynamic_bench|"
   "planner_bench|"
   "planner_ompl_bench|"
+  "task_planner_bench|"
 )
 if [[ $carmen -eq 1 ]]; then
   benches+=("mapper_carmen_bench_intel|--only intel" "mapper_carmen_bench_fr079|--only fr079")

@@ -201,7 +201,7 @@ void Coordinator::OnPose(const Pose2& pose, int64_t utime, int64_t now) {
   pose_received_ = now;
 }
 
-void Coordinator::OnTaskPlan(const TaskPlan& plan, int64_t) { plans_[plan.request_id] = plan; }
+void Coordinator::OnTaskPlan(int64_t request_id, const TaskPlan& plan, int64_t) { plans_[request_id] = plan; }
 
 void Coordinator::OnPath(const PathAnswer& path, int64_t) {
   const auto old = paths_.find(path.request_id);
@@ -352,9 +352,9 @@ void Coordinator::HaltActions(const std::vector<int>& nodes, int64_t now) {
       if (st != statuses_.end()) {
         Task& t = actions_.at(static_cast<size_t>(tree_.node(node).ref)).task;
         const double done = std::clamp(st->second.progress, 0.0, 1.0) * t.depth;
-        if (done > 0.0 && t.face) {
+        if (done > 0.0) {
           const Eigen::Vector2d dir(std::cos(t.target.theta), std::sin(t.target.theta));
-          t.face = Segment(t.face->a + dir * done, t.face->b + dir * done);
+          t.face = Segment(t.face.a + dir * done, t.face.b + dir * done);
           t.target = Ahead(t.target, done);
           t.depth -= done;
           Event("cut " + std::to_string(t.id) + " halted after " + std::to_string(done) + " m; " +
@@ -556,7 +556,7 @@ void Coordinator::TickPlanRequest(Running& r, TaskRequestKind kind, int64_t now)
   const TaskPlan plan = answer->second;
   r.request_id = -1;
   if (kind == TaskRequestKind::kAdvance) {
-    if (plan.status != TaskPlanStatus::kOk) {
+    if (plan.status != PlanStatus::kOk) {
       FinishAction(r, false, "task planner: " + plan.reason, now);
       return;
     }
@@ -565,12 +565,12 @@ void Coordinator::TickPlanRequest(Running& r, TaskRequestKind kind, int64_t now)
     return;
   }
   // A survey step.
-  if (plan.status == TaskPlanStatus::kComplete) {
+  if (plan.status == PlanStatus::kComplete) {
     FinishAction(r, true, "exploration complete after " + std::to_string(stats_.stations_visited) +
                               " stations: " + plan.reason, now);
     return;
   }
-  if (plan.status == TaskPlanStatus::kFailed) {
+  if (plan.status == PlanStatus::kFailed) {
     FinishAction(r, false, "task planner: " + plan.reason, now);
     return;
   }
@@ -634,7 +634,7 @@ void Coordinator::TickCut(Running& r, const Task& task, int64_t now) {
       CutTaskOut c;
       c.id = r.cut_id;
       c.depth = task.depth;
-      c.face = *task.face;
+      c.face = task.face;
       out_.cut_tasks.push_back(c);
       r.last_sent = now;
     }

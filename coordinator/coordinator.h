@@ -171,7 +171,8 @@ class Coordinator {
 
   void OnHeartbeat(const HeartbeatSample& hb, int64_t now);
   void OnPose(const Pose2& pose, int64_t utime, int64_t now);
-  void OnTaskPlan(const TaskPlan& plan, int64_t now);
+  // The task planner's answer to request_id.
+  void OnTaskPlan(int64_t request_id, const TaskPlan& plan, int64_t now);
   void OnPath(const PathAnswer& path, int64_t now);
   void OnTaskStatus(const TaskStatusReport& status, int64_t now);
   void OnCutterState(bool drum_on, bool boom_raised, int64_t now);

@@ -24,7 +24,7 @@
 #include "minenav/task_request_t.hpp"
 #include "minenav/task_status_t.hpp"
 #include "planner/path_message.h"
-#include "planner/task_message.h"
+#include "planner/task_plan_message.h"
 #include "tracker/cutter_conversions.h"
 
 namespace minenav {
@@ -137,8 +137,10 @@ CoordinatorNode::CoordinatorNode(NodeRuntime& runtime, CoordinatorNodeOptions op
     const PoseEstimate e = FromLcm(m);
     if (e.converged) coordinator_.OnPose(e.pose, e.utime, runtime_.NowUtime());
   });
-  Subscribe<task_plan_t>(bus, options_.task_plan_channel,
-                         [this](const task_plan_t& m) { coordinator_.OnTaskPlan(FromLcm(m), runtime_.NowUtime()); });
+  Subscribe<task_plan_t>(bus, options_.task_plan_channel, [this](const task_plan_t& m) {
+    const TaskPlanMessage plan = TaskPlanFromLcm(m);
+    coordinator_.OnTaskPlan(plan.request_id, plan.plan, runtime_.NowUtime());
+  });
   Subscribe<path_t>(bus, options_.path_channel, [this](const path_t& m) {
     PathAnswer a;
     a.request_id = m.request_id;
@@ -217,7 +219,10 @@ void CoordinatorNode::PublishOutputs(int64_t now) {
   CoordinatorOutputs out = coordinator_.TakeOutputs();
   Bus& bus = runtime_.bus();
   for (const std::string& line : out.log) MINENAV_LOG(kInfo) << line;
-  for (const TaskRequest& q : out.task_requests) Publish(bus, options_.task_request_channel, ToLcm(q, now));
+  for (TaskRequest q : out.task_requests) {
+    q.utime = now;
+    Publish(bus, options_.task_request_channel, TaskRequestToLcm(q));
+  }
   for (const PathRequestOut& r : out.path_requests) {
     path_request_t m{};
     m.utime = now;
@@ -301,7 +306,7 @@ void CoordinatorNode::WriteReport() const {
     x["target"] = {t.target.x, t.target.y, t.target.theta};
     x["depth"] = t.depth;
     x["width"] = t.width;
-    if (t.face) x["face"] = {t.face->a.x(), t.face->a.y(), t.face->b.x(), t.face->b.y()};
+    if (IsCutTask(t.kind)) x["face"] = {t.face.a.x(), t.face.a.y(), t.face.b.x(), t.face.b.y()};
     for (const MissionNodeStatus& n : s.nodes)
       if (n.task_id == t.id) x["state"] = ToString(n.state);
     tasks.push_back(x);

@@ -24,7 +24,7 @@
 #include "minenav/task_plan_t.hpp"
 #include "minenav/task_request_t.hpp"
 #include "minenav/task_status_t.hpp"
-#include "planner/task_message.h"
+#include "planner/task_plan_message.h"
 #include "tests/temp_dir.h"
 
 namespace minenav {
@@ -121,15 +121,16 @@ TEST(CoordinatorNodeTest, AStationIsDrivenThroughThePlannersAndTheTracker) {
   EXPECT_EQ(requests[0].kind, task_request_t::SURVEY_NEXT);
   EXPECT_DOUBLE_EQ(requests[0].pose.x, 2.0);
   // The task planner proposes a station.
-  TaskPlan plan;
-  plan.request_id = requests[0].request_id;
-  plan.status = TaskPlanStatus::kOk;
+  TaskPlanMessage msg;
+  msg.request_id = requests[0].request_id;
+  TaskPlan& plan = msg.plan;
+  plan.status = PlanStatus::kOk;
   Task station;
   station.id = 7;
   station.kind = TaskKind::kScanStation;
   station.target = Pose2(10, 3, 0);
   plan.tasks = {station};
-  h.bus->InjectMessage("TASK_PLAN", ToLcm(plan, h.clock.NowUtime()));
+  h.bus->InjectMessage("TASK_PLAN", TaskPlanToLcm(msg));
   h.Tick(2);
   const auto paths = h.Out<path_request_t>("PATH_REQUEST");
   ASSERT_EQ(paths.size(), 1u);
@@ -170,9 +171,10 @@ TEST(CoordinatorNodeTest, TheAdvanceCutsOnCutTaskAndThePauseCancelsIt) {
   ASSERT_EQ(requests.size(), 1u);
   EXPECT_EQ(requests[0].kind, task_request_t::ADVANCE);
   EXPECT_DOUBLE_EQ(requests[0].face.x, 40.0);
-  TaskPlan plan;
-  plan.request_id = requests[0].request_id;
-  plan.status = TaskPlanStatus::kOk;
+  TaskPlanMessage msg;
+  msg.request_id = requests[0].request_id;
+  TaskPlan& plan = msg.plan;
+  plan.status = PlanStatus::kOk;
   Task cut;
   cut.id = 11;
   cut.kind = TaskKind::kBoxCut;
@@ -181,7 +183,7 @@ TEST(CoordinatorNodeTest, TheAdvanceCutsOnCutTaskAndThePauseCancelsIt) {
   cut.width = 3.3;
   cut.face = Segment(40, 0, 40, 3.3);
   plan.tasks = {cut};
-  h.bus->InjectMessage("TASK_PLAN", ToLcm(plan, h.clock.NowUtime()));
+  h.bus->InjectMessage("TASK_PLAN", TaskPlanToLcm(msg));
   h.Tick(2);
   const auto cuts = h.Out<cutter_command_t>("CUT_TASK");
   ASSERT_EQ(cuts.size(), 1u);
@@ -251,17 +253,18 @@ TEST(CoordinatorNodeTest, TheReportSaysWhatTheMissionDid) {
   h.Tick(15);
   const auto requests = h.Out<task_request_t>("TASK_REQUEST");
   ASSERT_EQ(requests.size(), 1u);
-  TaskPlan plan;
-  plan.request_id = requests[0].request_id;
-  plan.status = TaskPlanStatus::kFailed;
+  TaskPlanMessage msg;
+  msg.request_id = requests[0].request_id;
+  TaskPlan& plan = msg.plan;
+  plan.status = PlanStatus::kFailed;
   plan.reason = "no face within 5 m of (40.0, 3.0)";
-  h.bus->InjectMessage("TASK_PLAN", ToLcm(plan, h.clock.NowUtime()));
+  h.bus->InjectMessage("TASK_PLAN", TaskPlanToLcm(msg));
   h.Tick(3);
   // plan_attempts = 2: asked once more, refused again; the mission fails and says why.
   const auto again = h.Out<task_request_t>("TASK_REQUEST");
   ASSERT_EQ(again.size(), 2u);
-  plan.request_id = again[1].request_id;
-  h.bus->InjectMessage("TASK_PLAN", ToLcm(plan, h.clock.NowUtime()));
+  msg.request_id = again[1].request_id;
+  h.bus->InjectMessage("TASK_PLAN", TaskPlanToLcm(msg));
   h.Tick(3);
   EXPECT_TRUE(h.runtime->StopRequested());
   const nlohmann::json j = nlohmann::json::parse(ReadFile(o.report_out));

@@ -118,25 +118,23 @@ struct FakeFleet {
     for (const TaskRequest& q : out.task_requests) {
       task_requests.push_back(q);
       TaskPlan p;
-      p.request_id = q.request_id;
-      p.plan_id = q.request_id + 1000;
       if (q.kind == TaskRequestKind::kSurveyNext) {
         if (next_station < stations.size()) {
-          p.status = TaskPlanStatus::kOk;
+          p.status = PlanStatus::kOk;
           p.tasks = {MakeTask(900 + static_cast<int64_t>(next_station), TaskKind::kScanStation,
                               stations[next_station], "station")};
           p.reason = "frontier";
           ++next_station;
         } else {
-          p.status = TaskPlanStatus::kComplete;
+          p.status = PlanStatus::kComplete;
           p.reason = "no reachable frontier";
         }
       } else {
-        p.status = TaskPlanStatus::kOk;
+        p.status = PlanStatus::kOk;
         p.tasks = AdvancePlan();
         p.reason = "box cut on the left, slab on the right";
       }
-      c.OnTaskPlan(p, now);
+      c.OnTaskPlan(q.request_id, p, now);
     }
     for (const PathRequestOut& r : out.path_requests) {
       path_requests.push_back(r);

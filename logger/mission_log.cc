@@ -12,7 +12,7 @@
 #include "minenav/path_t.hpp"
 #include "minenav/task_status_t.hpp"
 #include "planner/path_message.h"
-#include "planner/task_message.h"
+#include "planner/task_plan_message.h"
 
 namespace minenav {
 
@@ -117,7 +117,7 @@ class MissionLogReader {
         s.nodes.push_back({n.name, CheckedState<BtStatus>(n.state, 3, "mission_node_t")});
       r.mission_status.push_back(std::move(s));
     } else if (ch == c_.task_plan) {
-      const TaskPlan plan = FromLcm(Decode<task_plan_t>(e));
+      const TaskPlan plan = TaskPlanFromLcm(Decode<task_plan_t>(e)).plan;
       for (const Task& t : plan.tasks)
         if (t.kind == TaskKind::kScanStation && stations_.insert(t.id).second) r.scan_stations.push_back(t.target);
     } else if (ch == c_.heartbeat) {

@@ -20,7 +20,7 @@
 #include "minenav/mission_status_t.hpp"
 #include "minenav/task_status_t.hpp"
 #include "planner/path_message.h"
-#include "planner/task_message.h"
+#include "planner/task_plan_message.h"
 
 namespace minenav {
 namespace {
@@ -84,8 +84,10 @@ MissionFiles WriteMission(bool bad = false) {
   w.Write("SIM_WORLD", SegmentsToLcm(Loop(kBefore), At(0), 1, "world"));
   w.Write("MISSION_STATUS", Status(0, mission_status_t::WAITING, mission_node_t::IDLE));
   w.Write("MISSION_STATUS", Status(1, mission_status_t::RUNNING, mission_node_t::RUNNING));
-  TaskPlan plan;
-  plan.status = TaskPlanStatus::kOk;
+  TaskPlanMessage message;
+  message.utime = At(1);
+  TaskPlan& plan = message.plan;
+  plan.status = PlanStatus::kOk;
   for (const auto& [kind, x] : std::vector<std::pair<TaskKind, double>>{
            {TaskKind::kScanStation, 2.0}, {TaskKind::kScanStation, 8.0}, {TaskKind::kMove, 11.0}}) {
     Task t;
@@ -94,7 +96,7 @@ MissionFiles WriteMission(bool bad = false) {
     t.target = Pose2(x, 3, 0);
     plan.tasks.push_back(t);
   }
-  w.Write("TASK_PLAN", ToLcm(plan, At(1)));
+  w.Write("TASK_PLAN", TaskPlanToLcm(message));
   w.Write("PATH", Path(1.5, 1, "ok: 12.00 m, 1 pieces, 0 reversals, 50 expansions, 4.0 ms on map version 1"));
   w.Write("PATH", Path(1.6, 1, "ok: 12.00 m, 1 pieces, 0 reversals, 50 expansions, 4.0 ms on map version 1"));
   w.Write("DRIVE_PATH", Path(1.7, 1, "ok: 12.00 m, 1 pieces, 0 reversals, 50 expansions, 4.0 ms on map version 1"));

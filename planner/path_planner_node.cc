@@ -14,6 +14,7 @@
 #include "common/node/conversions.h"
 #include "minenav/heartbeat_t.hpp"
 #include "minenav/pose_estimate_t.hpp"
+#include "planner/contour_map_contours.h"
 
 namespace minenav {
 
@@ -205,13 +206,7 @@ void PathPlannerNode::OnMap(const contour_map_t& m) {
   if (map_ && map.version == map_->version) return;
   auto snapshot = std::make_shared<MapSnapshot>();
   snapshot->version = map.version;
-  for (ContourPolyline& c : map.contours) {
-    mapper::Contour contour;
-    contour.id = static_cast<int>(c.id);
-    contour.closed = c.closed;
-    contour.points = std::move(c.points);
-    snapshot->contours.push_back(std::move(contour));
-  }
+  snapshot->contours = ContoursOf(std::move(map));
   map_ = std::move(snapshot);
   MINENAV_LOG(kDebug) << options_.map_channel << " version " << map_->version << ": " << map_->contours.size() << " contours";
   if (!active_) return;

@@ -16,6 +16,7 @@
 #include "mapper/contour_map_io.h"
 #include "planner/grid_astar.h"
 #include "planner/movingai.h"
+#include "planner/path_svg.h"
 #include "render/svg_render.h"
 
 namespace minenav {
@@ -47,64 +48,9 @@ std::string PathCsv(const PlannedPath& path) {
   return csv.str();
 }
 
-// The map, the path through every piece (arcs drawn as chords every 0.5 m) and the footprint
-// every 2 m along it.
 std::string PathSvg(const Se2Planner& planner, const PlannedPath& path, const std::string& title,
                     const ContourFreeSpace* space, const FreeSpaceOptions& free_space) {
-  SvgScene scene;
-  scene.title = title;
-  if (space != nullptr) {
-    // The known free space: runs of 0.5 m cells along x whose centres KnownFreeSpace holds.
-    const KnownFreeSpace known(*space, free_space);
-    SvgArea cells{"known free space", "#2ca02c", 0.2, {}};
-    constexpr double kCell = 0.5;
-    const Eigen::Vector2d lo = planner.map_min(), hi = planner.map_max();
-    for (double y = lo.y(); y < hi.y(); y += kCell) {
-      double run_start = 0.0;
-      bool in_run = false;
-      for (double x = lo.x(); x <= hi.x() + kCell; x += kCell) {
-        const bool in = x < hi.x() && known.Contains({x + kCell / 2, y + kCell / 2});
-        if (in && !in_run) run_start = x;
-        if (!in && in_run)
-          cells.polygons.push_back({{run_start, y}, {x, y}, {x, y + kCell}, {run_start, y + kCell}});
-        in_run = in;
-      }
-    }
-    scene.areas.push_back(cells);
-    scene.lines.push_back({"walls (contours)", "#333333", 1.5, space->walls, {}});
-    // Frontiers dashed: one two-pose dashed trajectory each, the first in the legend.
-    for (const Segment& fr : space->frontiers)
-      scene.trajectories.push_back({scene.trajectories.empty() ? "frontiers (end of what the ladar saw)" : "",
-                                    "#d62728", 1.5, true, false, {Pose2(fr.a.x(), fr.a.y(), 0.0), Pose2(fr.b.x(), fr.b.y(), 0.0)}});
-  } else {
-    scene.lines.push_back({"map", "#333333", 1.5, planner.map(), {}});
-  }
-  SvgTrajectory traj{"path", "#1f77b4", 2.0, false, false, {path.start}};
-  SvgLineLayer footprints{"footprint", "#ff7f0e", 0.8, {}, {}};
-  Pose2 from = path.start;
-  double since_footprint = 1e9;
-  for (const MotionPiece& p : path.pieces) {
-    const double extent = p.motion == Motion::kTurnInPlace ? std::abs(p.amount) * 5.0 : p.amount;
-    const int n = std::max(1, static_cast<int>(std::ceil(extent / 0.5)));
-    for (int k = 1; k <= n; ++k) {
-      const Pose2 q = PoseAfter(from, p.motion, p.amount * k / n, p.radius);
-      traj.poses.push_back(q);
-      since_footprint += extent / n;
-      if (since_footprint >= 2.0 || (k == n && &p == &path.pieces.back())) {
-        SvgPolyline outline{{}, true};
-        for (const auto& v : planner.footprint().vertices) outline.points.push_back(q * v);
-        footprints.polylines.push_back(outline);
-        since_footprint = 0.0;
-      }
-    }
-    from = p.end;
-  }
-  SvgPolyline start_outline{{}, true};
-  for (const auto& v : planner.footprint().vertices) start_outline.points.push_back(path.start * v);
-  footprints.polylines.push_back(start_outline);
-  scene.lines.push_back(footprints);
-  scene.trajectories.push_back(traj);
-  return RenderSvg(scene);
+  return RenderSvg(PathScene(planner.map(), planner.footprint(), path, title, space, free_space));
 }
 
 int RunMapMode(const PlannerBatchFlags& flags, const Se2PlannerOptions& options, const SearchLimits& limits,

@@ -50,6 +50,17 @@ inline std::vector<Segment> Crossing(double width, double arm) {
   return m;
 }
 
+// The checker's settings for `polygon` (vehicle frame) at `clearance` (m), the polygon sampled
+// every `sample_step` m.
+inline testing::PathCheckSettings CheckSettings(const std::vector<Eigen::Vector2d>& polygon, double clearance,
+                                                double sample_step = 0.02) {
+  testing::PathCheckSettings s;
+  s.polygon = polygon;
+  s.clearance = clearance;
+  s.sample_step = sample_step;
+  return s;
+}
+
 // The planner's pieces as the checker sees them (motion code and end pose only).
 inline std::vector<testing::CheckedPiece> AsChecked(const PlannedPath& path) {
   std::vector<testing::CheckedPiece> c;
