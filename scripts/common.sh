@@ -43,7 +43,7 @@ minenav_install_deps() { minenav_install_missing "${MINENAV_PACKAGES[@]}"; minen
 minenav_npm_ci() {
   local dir="$1"
   minenav_install_node
-  if [ -d "$dir/node_modules" ] && [ "$dir/node_modules/.package-lock.json" -nt "$dir/package-lock.json" ]; then
+  if [ -f "$dir/node_modules/.package-lock.json" ] && ! [ "$dir/package-lock.json" -nt "$dir/node_modules/.package-lock.json" ]; then
     return 0
   fi
   echo "== installing npm packages of $dir (npm ci)"

@@ -34,7 +34,7 @@ constexpr const char* kScanSchema = R"js({"type":"object","title":"minenav.viewe
     R"js("num_readings":{"type":"integer"},"ranges":{"type":"array","items":{"type":["number","null"]}}},)js"
     R"js("required":["utime","scan_id","start_angle","angle_step","ranges"]})js";
 
-constexpr const char* kContourMapSchema = R"js({"type":"object","title":"minenav.viewer.contour_map",)js"
+constexpr const char* kContourMapSchemaText = R"js({"type":"object","title":"minenav.viewer.contour_map",)js"
     R"js("description":"the contour map, inflated: each contour's points as a flat list x0, y0, x1, y1, ... (m, map frame)",)js"
     R"js("properties":{"utime":{"type":"integer"},"version":{"type":"integer"},"num_scans":{"type":"integer"},)js"
     R"js("contours":{"type":"array","items":{"type":"object","properties":{"id":{"type":"integer"},)js"
@@ -71,6 +71,21 @@ bool IsLatched(const std::string& type_name) {
 }
 
 }  // namespace
+
+const char* const kContourMapJsonSchema = kContourMapSchemaText;
+
+json ContourMapJson(const ContourMapMessage& map) {
+  json contours = json::array();
+  for (const ContourPolyline& c : map.contours) {
+    json xy = json::array();
+    for (const Eigen::Vector2d& p : c.points) {
+      xy.push_back(Millimetres(p.x()));
+      xy.push_back(Millimetres(p.y()));
+    }
+    contours.push_back({{"id", c.id}, {"closed", c.closed}, {"xy", std::move(xy)}});
+  }
+  return {{"utime", map.utime}, {"version", map.version}, {"num_scans", map.num_scans}, {"contours", std::move(contours)}};
+}
 
 void DeclareOptions(OptionScope s, DisplayOptions& o) {
   s.AddInt("max_scan_points", &o.max_scan_points, "readings of a displayed scan (every k-th reading is sent)", 8,
@@ -197,21 +212,11 @@ std::optional<DisplayMessage> DisplayStream::ContourMap(const std::string& chann
   }
   const ContourMapMessage map = ContourMapFromLcm(m);  // inflates; throws InputError
   last_version_[channel] = m.version;
-  json contours = json::array();
-  for (const ContourPolyline& c : map.contours) {
-    json xy = json::array();
-    for (const Eigen::Vector2d& p : c.points) {
-      xy.push_back(Millimetres(p.x()));
-      xy.push_back(Millimetres(p.y()));
-    }
-    contours.push_back({{"id", c.id}, {"closed", c.closed}, {"xy", std::move(xy)}});
-  }
-  json j = {{"utime", map.utime}, {"version", map.version}, {"num_scans", map.num_scans},
-            {"contours", std::move(contours)}};
+  const json j = ContourMapJson(map);
   DisplayMessage d;
   d.topic = channel;
-  d.schema_name = "minenav.viewer.contour_map";
-  d.schema = kContourMapSchema;
+  d.schema_name = kContourMapJsonName;
+  d.schema = kContourMapJsonSchema;
   d.payload = Dump(j);
   d.utime = map.utime;
   d.latched = true;

@@ -16,7 +16,10 @@
 #include <string_view>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "common/config.h"
+#include "common/node/contour_map_conversions.h"
 #include "minenav/heartbeat_t.hpp"
 
 namespace minenav {
@@ -53,6 +56,12 @@ struct DisplayCounters {
 // The topics the stream makes besides the bus's channel names.
 inline constexpr const char* kFleetTopic = "/minenav/fleet";
 inline constexpr const char* kViewerConfigTopic = "/minenav/viewer_config";
+
+// The contour map as the page (and the MCAP export) shows it: inflated, each contour's points
+// as a flat list x0, y0, x1, y1, ... to the millimetre. Schema name and text below.
+nlohmann::json ContourMapJson(const ContourMapMessage& map);
+inline constexpr const char* kContourMapJsonName = "minenav.viewer.contour_map";
+extern const char* const kContourMapJsonSchema;
 
 class DisplayStream {
  public:

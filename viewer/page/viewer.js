@@ -401,6 +401,6 @@
   for (const id of ["show_walls", "show_scan"]) $(id).addEventListener("change", () => { dirty = true; });
   window.addEventListener("resize", () => { dirty = true; });
 
-  window.minenavViewer = { state, view, stats, worldToScreen, screenToWorld, sendCommand };
+  window.minenavViewer = { state, view, stats, worldToScreen, screenToWorld, sendCommand, redraw: () => { dirty = true; } };
   connect();
 })();

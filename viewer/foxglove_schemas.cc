@@ -1,0 +1,153 @@
+#include "viewer/foxglove_schemas.h"
+
+#include <cmath>
+#include <map>
+
+namespace minenav::foxglove_schemas {
+
+namespace {
+
+using nlohmann::json;
+
+json Time(int64_t utime) {
+  const int64_t sec = utime >= 0 ? utime / 1'000'000 : 0;
+  const int64_t nsec = utime >= 0 ? (utime % 1'000'000) * 1000 : 0;
+  return {{"sec", sec}, {"nsec", nsec}};
+}
+
+json Pose(double x, double y, double theta) {
+  return {{"position", {{"x", x}, {"y", y}, {"z", 0.0}}},
+          {"orientation", {{"x", 0.0}, {"y", 0.0}, {"z", std::sin(theta / 2)}, {"w", std::cos(theta / 2)}}}};
+}
+
+constexpr const char* kTimeSchema =
+    R"js({"type":"object","properties":{"sec":{"type":"integer","minimum":0},"nsec":{"type":"integer","minimum":0,"maximum":999999999}}})js";
+constexpr const char* kVector3Schema =
+    R"js({"type":"object","properties":{"x":{"type":"number"},"y":{"type":"number"},"z":{"type":"number"}}})js";
+constexpr const char* kQuaternionSchema =
+    R"js({"type":"object","properties":{"x":{"type":"number"},"y":{"type":"number"},"z":{"type":"number"},"w":{"type":"number"}}})js";
+
+json PoseSchema() {
+  return {{"type", "object"},
+          {"properties", {{"position", json::parse(kVector3Schema)}, {"orientation", json::parse(kQuaternionSchema)}}}};
+}
+
+std::map<std::string, std::string> MakeSchemas() {
+  const json time = json::parse(kTimeSchema);
+  std::map<std::string, std::string> s;
+  s[kPoseInFrame] = json{{"title", kPoseInFrame},
+                         {"type", "object"},
+                         {"properties", {{"timestamp", time}, {"frame_id", {{"type", "string"}}}, {"pose", PoseSchema()}}}}
+                        .dump();
+  s[kLaserScan] =
+      json{{"title", kLaserScan},
+           {"type", "object"},
+           {"properties",
+            {{"timestamp", time},
+             {"frame_id", {{"type", "string"}}},
+             {"pose", PoseSchema()},
+             {"start_angle", {{"type", "number"}}},
+             {"end_angle", {{"type", "number"}}},
+             {"ranges", {{"type", "array"}, {"items", {{"type", {"number", "null"}}}}}},
+             {"intensities", {{"type", "array"}, {"items", {{"type", "number"}}}}}}}}
+          .dump();
+  const json color = {{"type", "object"},
+                      {"properties", {{"r", {{"type", "number"}}}, {"g", {{"type", "number"}}}, {"b", {{"type", "number"}}}, {"a", {{"type", "number"}}}}}};
+  const json line = {{"type", "object"},
+                     {"properties",
+                      {{"type", {{"type", "integer"}, {"description", "0 LINE_STRIP, 1 LINE_LOOP, 2 LINE_LIST"}}},
+                       {"pose", PoseSchema()},
+                       {"thickness", {{"type", "number"}}},
+                       {"scale_invariant", {{"type", "boolean"}}},
+                       {"points", {{"type", "array"}, {"items", json::parse(kVector3Schema)}}},
+                       {"color", color},
+                       {"colors", {{"type", "array"}, {"items", color}}},
+                       {"indices", {{"type", "array"}, {"items", {{"type", "integer"}}}}}}}};
+  const json entity = {{"type", "object"},
+                       {"properties",
+                        {{"timestamp", time},
+                         {"frame_id", {{"type", "string"}}},
+                         {"id", {{"type", "string"}}},
+                         {"lifetime", {{"type", "object"}}},
+                         {"frame_locked", {{"type", "boolean"}}},
+                         {"metadata", {{"type", "array"}}},
+                         {"arrows", {{"type", "array"}}},
+                         {"cubes", {{"type", "array"}}},
+                         {"spheres", {{"type", "array"}}},
+                         {"cylinders", {{"type", "array"}}},
+                         {"lines", {{"type", "array"}, {"items", line}}},
+                         {"triangles", {{"type", "array"}}},
+                         {"texts", {{"type", "array"}}},
+                         {"models", {{"type", "array"}}}}}};
+  s[kSceneUpdate] = json{{"title", kSceneUpdate},
+                         {"type", "object"},
+                         {"properties",
+                          {{"deletions", {{"type", "array"}}}, {"entities", {{"type", "array"}, {"items", entity}}}}}}
+                        .dump();
+  return s;
+}
+
+}  // namespace
+
+const std::string& SchemaText(const std::string& name) {
+  static const std::map<std::string, std::string> schemas = MakeSchemas();
+  static const std::string none;
+  const auto it = schemas.find(name);
+  return it == schemas.end() ? none : it->second;
+}
+
+json PoseInFrame(int64_t utime, const std::string& frame, const pose2d_t& pose) {
+  return {{"timestamp", Time(utime)}, {"frame_id", frame}, {"pose", Pose(pose.x, pose.y, pose.theta)}};
+}
+
+json LaserScan(const ladar_scan_t& scan, const std::string& frame, const pose2d_t& v) {
+  const pose2d_t& o = scan.sensor_offset;
+  const double c = std::cos(v.theta), s = std::sin(v.theta);
+  json ranges = json::array();
+  for (const float r : scan.ranges) {
+    const bool valid = std::isfinite(r) && r > 0.0f && r >= scan.min_range && r <= scan.max_range;
+    ranges.push_back(valid ? json(r) : json(nullptr));
+  }
+  const double n = scan.ranges.empty() ? 0.0 : static_cast<double>(scan.ranges.size() - 1);
+  return {{"timestamp", Time(scan.utime)},
+          {"frame_id", frame},
+          {"pose", Pose(v.x + c * o.x - s * o.y, v.y + s * o.x + c * o.y, v.theta + o.theta)},
+          {"start_angle", scan.start_angle},
+          {"end_angle", static_cast<double>(scan.start_angle) + n * static_cast<double>(scan.angle_step)},
+          {"ranges", std::move(ranges)},
+          {"intensities", scan.intensities}};
+}
+
+json SceneLines(int64_t utime, const std::string& frame, const std::string& id, const std::vector<Polyline>& lines,
+                const Rgba& color, double thickness_m) {
+  json strips = json::array();
+  for (const Polyline& l : lines) {
+    json points = json::array();
+    for (const Eigen::Vector2d& p : l.points) points.push_back({{"x", p.x()}, {"y", p.y()}, {"z", 0.0}});
+    strips.push_back({{"type", l.closed ? 1 : 0},
+                      {"pose", Pose(0, 0, 0)},
+                      {"thickness", thickness_m},
+                      {"scale_invariant", false},
+                      {"points", std::move(points)},
+                      {"color", {{"r", color.r}, {"g", color.g}, {"b", color.b}, {"a", color.a}}},
+                      {"colors", json::array()},
+                      {"indices", json::array()}});
+  }
+  json entity = {{"timestamp", Time(utime)},
+                 {"frame_id", frame},
+                 {"id", id},
+                 {"lifetime", {{"sec", 0}, {"nsec", 0}}},
+                 {"frame_locked", false},
+                 {"metadata", json::array()},
+                 {"arrows", json::array()},
+                 {"cubes", json::array()},
+                 {"spheres", json::array()},
+                 {"cylinders", json::array()},
+                 {"lines", std::move(strips)},
+                 {"triangles", json::array()},
+                 {"texts", json::array()},
+                 {"models", json::array()}};
+  return {{"deletions", json::array()}, {"entities", json::array({std::move(entity)})}};
+}
+
+}  // namespace minenav::foxglove_schemas
