@@ -76,6 +76,7 @@ std::vector<fs::Polyline> Lines(const std::vector<Segment>& segments) {
 int RunExportMcapCommand(const std::vector<std::string>& in_args) {
   std::string channels = ".*", scan_pose_channel = "POSE";
   bool foxglove = true;
+  int chunk_kb = 1024;
   ConfigSchema schema("log_tool export-mcap",
                       "Writes an LCM log as MCAP for Foxglove and Lichtblick: every channel as a topic of its\n"
                       "own with the message's fields as JSON (JSON Schema from the .lcm file), and poses, scans\n"
@@ -86,6 +87,7 @@ int RunExportMcapCommand(const std::vector<std::string>& in_args) {
   schema.AddBool("foxglove", &foxglove, "also write poses, scans and maps in Foxglove's well-known schemas");
   schema.AddString("scan_pose_channel", &scan_pose_channel,
                    "pose_estimate_t channel whose latest pose places the Foxglove scans (else SIM_TRUTH, else the vehicle frame)");
+  schema.AddInt("chunk_kb", &chunk_kb, "KB of messages per MCAP chunk (the unit readers index and load)", 1, 1 << 20);
   if (schema.Parse(in_args) == ParseOutcome::kExit) return 0;
   const std::string log = schema.positional()[0], out = schema.positional()[1];
   ValidateChannelPattern(channels);
@@ -93,7 +95,7 @@ int RunExportMcapCommand(const std::vector<std::string>& in_args) {
   const ChannelMatcher matcher(channels);
 
   LogReader reader(log);
-  McapWriter writer(out);
+  McapWriter writer(out, static_cast<size_t>(chunk_kb) * 1024);
   McapTopics topics(writer);
   std::optional<pose2d_t> estimate, truth;
   int64_t skipped = 0, foreign = 0;

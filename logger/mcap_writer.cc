@@ -40,8 +40,8 @@ std::string Record(uint8_t op, const std::string& body) {
 
 }  // namespace
 
-McapWriter::McapWriter(const std::string& path, std::string profile, std::string library)
-    : path_(path), partial_(path + ".partial") {
+McapWriter::McapWriter(const std::string& path, size_t chunk_bytes, std::string profile, std::string library)
+    : path_(path), partial_(path + ".partial"), chunk_bytes_(chunk_bytes) {
   file_ = std::fopen(partial_.c_str(), "wb");
   if (!file_) throw InputError(path + ": cannot create");
   Write(std::string_view(kMagic, 8));
@@ -115,7 +115,7 @@ void McapWriter::AddMessage(uint16_t channel_id, uint64_t log_time, uint64_t pub
   chunk_records_ += Record(kMessage, body);
   ++message_count_;
   ++channel_counts_[channel_id];
-  if (chunk_records_.size() >= kChunkBytes) FlushChunk();
+  if (chunk_records_.size() >= chunk_bytes_) FlushChunk();
 }
 
 void McapWriter::FlushChunk() {

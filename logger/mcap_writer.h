@@ -19,8 +19,12 @@ namespace minenav {
 
 class McapWriter {
  public:
+  static constexpr size_t kChunkBytes = 1 << 20;  // default largest chunk
+
   // Throws InputError when the file cannot be created. profile: "" (none).
-  McapWriter(const std::string& path, std::string profile = "", std::string library = "minenav log_tool");
+  // chunk_bytes: largest chunk (bytes of records) before a new one starts.
+  explicit McapWriter(const std::string& path, size_t chunk_bytes = kChunkBytes, std::string profile = "",
+                      std::string library = "minenav log_tool");
   ~McapWriter();
   McapWriter(const McapWriter&) = delete;
   McapWriter& operator=(const McapWriter&) = delete;
@@ -36,8 +40,6 @@ class McapWriter {
 
   uint64_t messages() const { return message_count_; }
 
-  // Largest chunk before a new one starts (bytes of records).
-  static constexpr size_t kChunkBytes = 1 << 20;
 
  private:
   struct ChunkIndex {
@@ -48,6 +50,7 @@ class McapWriter {
   void FlushChunk();
 
   std::string path_, partial_;
+  size_t chunk_bytes_;
   std::FILE* file_ = nullptr;
   uint64_t position_ = 0;
   std::string schemas_, channels_;  // the records, kept for the summary
