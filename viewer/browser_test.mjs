@@ -11,7 +11,7 @@
 //     PAUSE on the bus).
 //
 //   node browser_test.mjs --url URL --world world.json --log known.lcm --screenshot OUT.png
-//                         --pose-offset DX,DY
+//                         [--replay-url URL --stations stations.csv]
 import { spawn } from "node:child_process";
 import { createRequire } from "node:module";
 import { mkdtempSync, readFileSync, rmSync, writeFileSync } from "node:fs";
@@ -219,6 +219,36 @@ try {
   check(stats.fps >= 10, "the page keeps animating (>= 10 frames/s headless)");
   check(errors.length === 0, `no errors in the page's console (${errors.join("; ")})`);
   if (args.screenshot) writeFileSync(args.screenshot, await page.screenshot());
+
+  // The log read directly by the bridge (--replay) with the time slider: pause, seek to 1.0 s
+  // (after the third station at 0.8 s, before the map's second version at 1.2 s).
+  if (args["replay-url"]) {
+    const stations = readFileSync(args.stations, "utf8").trim().split("\n").slice(1).map((l) => l.split(",").map(Number));
+    await page.goto(args["replay-url"]);
+    await page.waitForFunction(() => window.minenavViewer.state.replay && !document.getElementById("replay").hidden,
+                               null, { timeout: 10000 });
+    check(true, "replay: the time slider is shown");
+    await page.click("#replay_play");
+    await page.waitForFunction(() => window.minenavViewer.state.replay.paused, null, { timeout: 5000 });
+    const generation = await page.evaluate(() => window.minenavViewer.state.replay.generation);
+    await page.locator("#replay_slider").fill("1");
+    await page.waitForFunction((g) => {
+      const s = window.minenavViewer.state;
+      return s.replay.generation > g && s.pose && s.map && s.mission;
+    }, generation, { timeout: 5000 });
+    await page.waitForTimeout(300);
+    const r = await page.evaluate(() => {
+      const s = window.minenavViewer.state;
+      return { time: s.replay.time_s, x: s.pose.pose.x, y: s.pose.pose.y, track: s.track.length, version: s.map.version,
+               current: document.querySelector("#tree .current").innerText };
+    });
+    const [sx, sy] = stations[2];
+    check(Math.abs(r.time - 1.0) < 1e-6, `replay: at ${r.time} s after the seek`);
+    check(Math.abs(r.x - (sx + 0.3)) < 1e-6 && Math.abs(r.y - (sy - 0.2)) < 1e-6,
+          `replay: the pose of station 2 (${r.x}, ${r.y}), the track of stations 0-2 (${r.track} points)`);
+    check(r.track === 3, "replay: the driven track is rebuilt from the log (3 poses)");
+    check(r.version === 1 && /scan station 2/.test(r.current), `replay: map version ${r.version}, current subtask "${r.current.trim()}"`);
+  }
 } catch (e) {
   check(false, `exception: ${e && e.stack ? e.stack : e}`);
 } finally {

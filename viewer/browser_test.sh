@@ -43,8 +43,17 @@ for _ in $(seq 50); do
   sleep 0.1
 done
 
+# The same log read directly by a second bridge, with the time slider.
+"$bin/viewer_bridge" --port $((port + 1)) --replay known.lcm --display.vehicle-width 1.2 --display.vehicle-length 2 \
+  --heartbeat-period 0 2> replay_bridge.log &
+pids+=($!)
+for _ in $(seq 50); do
+  (exec 3<>/dev/tcp/127.0.0.1/$((port + 1))) 2>/dev/null && break
+  sleep 0.1
+done
+
 node "$here/browser_test.mjs" --url "http://127.0.0.1:$port/" --world world.json --log known.lcm \
-  --screenshot "$work/viewer.png" --pose-offset 0.3,-0.2
+  --screenshot "$work/viewer.png" --replay-url "http://127.0.0.1:$((port + 1))/" --stations stations.csv
 
 kill -TERM "$record_pid"; wait "$record_pid" || true
 "$bin/log_tool" spy --log commands.lcm --json > commands.json

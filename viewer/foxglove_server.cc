@@ -71,6 +71,7 @@ struct FoxgloveServer::Impl {
   std::vector<std::string> publish_topics;
   std::map<std::string, StaticFile> files;
   std::string session_id;
+  std::map<std::string, std::string> metadata;
   asio::io_context ioc;
   tcp::acceptor acceptor;
   std::map<std::string, Channel> channels;  // by topic
@@ -159,12 +160,8 @@ class Session : public std::enable_shared_from_this<Session> {
     ++impl_.server.counters_.clients_now;
     counted_ = true;
     std::vector<std::string> capabilities;
-    std::map<std::string, std::string> metadata;
-    if (may_publish_) {
-      capabilities.push_back("clientPublish");
-      metadata["command_topic"] = impl_.publish_topics.front();
-    }
-    SendText(foxglove::ServerInfoJson(impl_.name, capabilities, impl_.session_id, metadata));
+    if (may_publish_) capabilities.push_back("clientPublish");
+    SendText(foxglove::ServerInfoJson(impl_.name, capabilities, impl_.session_id, impl_.metadata));
     SendText(foxglove::AdvertiseJson(impl_.AllChannels()));
     Read();
   }
@@ -410,9 +407,10 @@ std::string FoxgloveServer::StatsJson() const {
 }
 
 FoxgloveServer::FoxgloveServer(FoxgloveServerOptions options, std::string name, std::vector<std::string> publish_topics,
-                               std::map<std::string, StaticFile> files)
+                               std::map<std::string, StaticFile> files, std::map<std::string, std::string> metadata)
     : options_(std::move(options)),
       impl_(std::make_unique<Impl>(*this, std::move(name), std::move(publish_topics), std::move(files))) {
+  impl_->metadata = std::move(metadata);
   impl_->session_id = std::to_string(std::chrono::system_clock::now().time_since_epoch().count());
 }
 

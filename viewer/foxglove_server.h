@@ -76,8 +76,9 @@ class FoxgloveServer final : public ViewerServer {
  public:
   // publish_topics: topics clients may publish on (empty: no clientPublish capability).
   // files: URL path ("/", "/viewer.js") -> file.
+  // metadata: serverInfo's (the page reads command_topic and replay_control_topic there).
   FoxgloveServer(FoxgloveServerOptions options, std::string name, std::vector<std::string> publish_topics,
-                 std::map<std::string, StaticFile> files);
+                 std::map<std::string, StaticFile> files, std::map<std::string, std::string> metadata = {});
   ~FoxgloveServer() override;
   FoxgloveServer(const FoxgloveServer&) = delete;
   FoxgloveServer& operator=(const FoxgloveServer&) = delete;

@@ -38,11 +38,13 @@ DisplayMessage Message(const std::string& topic, const std::string& payload, boo
 }
 
 std::unique_ptr<FoxgloveServer> StartServer(std::vector<std::string> publish_topics = {}, int queue_kb = 4096) {
+  std::map<std::string, std::string> metadata;
+  if (!publish_topics.empty()) metadata["command_topic"] = publish_topics.front();
   FoxgloveServerOptions o;
   o.port = 0;
   o.max_client_queue_kb = queue_kb;
   auto s = std::make_unique<FoxgloveServer>(o, "test", std::move(publish_topics),
-                                            std::map<std::string, StaticFile>{{"/index.html", {"<html>page</html>", "text/html"}}});
+                                            std::map<std::string, StaticFile>{{"/index.html", {"<html>page</html>", "text/html"}}}, metadata);
   s->Start();
   return s;
 }

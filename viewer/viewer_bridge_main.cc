@@ -4,6 +4,7 @@
 // viewer/README.md; the node is viewer/viewer_bridge_node.h.
 
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -37,9 +38,22 @@ int main(int argc, char** argv) {
         if (!runtime.options().log.empty())
           throw UsageError("--log: the bridge shows the live bus; replay a log into it with lcm-logplayer "
                            "(viewer/README.md, \"A recorded log\")");
+        if (!options.replay.empty() && options.allow_commands)
+          throw UsageError("--allow-commands with --replay: a replayed log takes no commands");
+        std::unique_ptr<LogReplay> replay;
+        if (!options.replay.empty()) {
+          replay = std::make_unique<LogReplay>(options.replay);
+          MINENAV_LOG(kInfo) << "replaying " << options.replay << ": " << replay->size() << " messages, "
+                             << replay->bytes() / 1000 << " kB, "
+                             << static_cast<double>(replay->end_utime() - replay->start_utime()) * 1e-6 << " s";
+        }
         std::vector<std::string> publish_topics;
         if (options.allow_commands) publish_topics.push_back(options.command_channel);
-        FoxgloveServer server(options.server, "minenav viewer_bridge", publish_topics, PageFiles());
+        if (replay) publish_topics.push_back(kReplayControlTopic);
+        std::map<std::string, std::string> metadata;
+        if (options.allow_commands) metadata["command_topic"] = options.command_channel;
+        if (replay) metadata["replay_control_topic"] = kReplayControlTopic;
+        FoxgloveServer server(options.server, "minenav viewer_bridge", publish_topics, PageFiles(), metadata);
         server.Start();
         MINENAV_LOG(kInfo) << "the operator's view is at http://" << options.server.address << ":" << server.port()
                            << "/ (Foxglove: ws://" << options.server.address << ":" << server.port() << "); commands "
@@ -48,7 +62,7 @@ int main(int argc, char** argv) {
           MINENAV_LOG(kWarn) << "--allow-commands on " << options.server.address
                              << ": anyone who reaches this address can stop or start the vehicle (commands are not signed yet)";
         runtime.Start();
-        ViewerBridgeNode node(runtime, options, server);
+        ViewerBridgeNode node(runtime, options, server, replay.get());
         const int code = node.Run();
         server.Stop();
         return code;

@@ -119,3 +119,72 @@ TEST(ViewerBridgeNodeTest, CommandsReachTheBusOnlyWithTheFlag) {
 
 }  // namespace
 }  // namespace minenav
+
+namespace minenav {
+namespace {
+
+TEST(ViewerBridgeNodeTest, ReplayPlaysOnSeeksAndObeysOnlyValidControls) {
+  std::vector<LogEvent> events;
+  for (int k = 0; k < 10; ++k) {  // a pose a second, x = k
+    pose_estimate_t p{};
+    p.utime = kT0 + k * 1'000'000;
+    p.source = "clue";
+    p.pose.x = k;
+    LogEvent e;
+    e.channel = "POSE";
+    e.timestamp = p.utime;
+    e.data = EncodeMessage(p);
+    events.push_back(std::move(e));
+  }
+  const LogReplay replay(std::move(events));
+  ManualClock clock(5'000'000);
+  FakeRuntime fake(clock);
+  FakeViewerServer server;
+  ViewerBridgeOptions o;
+  o.replay_speed = 2.0;
+  o.allow_commands = true;
+  ViewerBridgeNode node(fake.runtime(), o, server, &replay);
+  const auto last_x = [&] { return json::parse(server.On("POSE").back().payload)["pose"]["x"].get<double>(); };
+  ASSERT_EQ(server.On("POSE").size(), 1u);  // the state at the start: the first pose
+  EXPECT_EQ(last_x(), 0.0);
+  for (int i = 0; i < 20; ++i) {  // 1 s of clock at speed 2: the log plays to 2 s
+    fake.runtime().SpinOnce(0);
+    clock.Advance(50'000);
+  }
+  fake.runtime().SpinOnce(0);
+  EXPECT_EQ(last_x(), 2.0);
+  EXPECT_EQ(json::parse(server.On(kReplayTopic).back().payload)["generation"], 1);
+
+  server.published.clear();
+  server.inbound.push_back({3, kReplayControlTopic, R"({"seek_s":6.5,"paused":true})"});
+  clock.Advance(50'000);  // the commands' timer is due
+  fake.runtime().SpinOnce(0);
+  ASSERT_FALSE(server.On(kReplayTopic).empty());
+  const json status = json::parse(server.On(kReplayTopic).front().payload);
+  EXPECT_EQ(status["generation"], 2);
+  EXPECT_DOUBLE_EQ(status["time_s"].get<double>(), 6.5);
+  // Every pose up to 6.5 s for the track, after the new generation.
+  ASSERT_EQ(server.On("POSE").size(), 7u);
+  EXPECT_EQ(server.published.front().topic, kReplayTopic);
+  EXPECT_EQ(last_x(), 6.0);
+  server.published.clear();
+  clock.Advance(1'000'000);
+  fake.runtime().SpinOnce(0);
+  EXPECT_TRUE(server.On("POSE").empty());  // paused
+
+  for (const std::string bad : {R"({"seek_s":99})", R"({"speed":0})", R"({"rm":"-rf"})", R"("x")"}) {
+    server.inbound.push_back({4, kReplayControlTopic, bad});
+    clock.Advance(50'000);
+    fake.runtime().SpinOnce(0);
+    ASSERT_FALSE(server.replies.empty());
+    EXPECT_TRUE(server.replies.back().close) << bad;
+  }
+  // No operator commands in a replay, even with the flag.
+  server.inbound.push_back({5, "COORDINATOR_COMMAND", R"({"command":"PAUSE"})"});
+  clock.Advance(50'000);
+  fake.runtime().SpinOnce(0);
+  EXPECT_TRUE(fake.bus().PublishedOn("COORDINATOR_COMMAND").empty());
+}
+
+}  // namespace
+}  // namespace minenav

@@ -8,7 +8,7 @@
 
 (function () {
   const WANTED = ["CONTOUR_MAP", "SIM_WORLD", "LINE_MAP", "LADAR_SCAN", "POSE", "SIM_TRUTH", "PATH", "DRIVE_PATH",
-                  "MISSION_STATUS", "/minenav/fleet", "/minenav/bridge", "/minenav/viewer_config"];
+                  "MISSION_STATUS", "/minenav/fleet", "/minenav/bridge", "/minenav/viewer_config", "/minenav/replay"];
   const MOTION = { FORWARD: 0, REVERSE: 1, ARC_LEFT: 2, ARC_RIGHT: 3, TURN_IN_PLACE: 4, ARC_LEFT_REVERSE: 5,
                    ARC_RIGHT_REVERSE: 6 };
   const MISSION_STATES = ["IDLE", "RUNNING", "PAUSED", "DONE", "FAILED", "ABORTED", "ESTOPPED", "WAITING"];
@@ -21,7 +21,7 @@
   const state = {
     map: null, walls: null, scan: null, pose: null, truth: null, path: null, drivePath: null,
     mission: null, fleet: null, bridge: null, config: { vehicle_width_m: 3.3, vehicle_length_m: 10 },
-    track: [], connected: false, capabilities: [], commandTopic: null,
+    track: [], connected: false, capabilities: [], commandTopic: null, replayTopic: null, replay: null,
   };
   const view = { cx: 0, cy: 0, scale: 10, follow: true, fitted: false };
   const stats = { frames: 0, redraws: 0, bytes: 0, messages: 0, fps: 0, redrawsPerS: 0, bytesPerS: 0,
@@ -271,7 +271,7 @@
   const channels = new Map();       // channel id -> topic
   const subscriptions = new Map();  // subscription id -> topic
   let nextSubscription = 1;
-  let commandChannelId = null;
+  const clientChannels = new Map();  // topic -> client channel id
 
   function onMessage(topic, msg) {
     switch (topic) {
@@ -294,6 +294,7 @@
       case "/minenav/fleet": state.fleet = msg; showFleet(); break;
       case "/minenav/bridge": state.bridge = msg; showBridge(); break;
       case "/minenav/viewer_config": state.config = msg; break;
+      case "/minenav/replay": showReplay(msg); break;
     }
     dirty = true;
   }
@@ -303,7 +304,7 @@
     ws.binaryType = "arraybuffer";
     ws.onopen = () => { state.connected = true; $("conn").textContent = `connected to ${location.host}`; };
     ws.onclose = () => {
-      state.connected = false; channels.clear(); subscriptions.clear(); commandChannelId = null;
+      state.connected = false; channels.clear(); subscriptions.clear(); clientChannels.clear();
       $("conn").textContent = "disconnected: reconnecting in 2 s…";
       setButtons();
       setTimeout(connect, 2000);
@@ -316,6 +317,8 @@
         if (m.op === "serverInfo") {
           state.capabilities = m.capabilities || [];
           state.commandTopic = (m.metadata || {}).command_topic || null;
+          state.replayTopic = (m.metadata || {}).replay_control_topic || null;
+          $("replay").hidden = !state.replayTopic;
           setButtons();
         } else if (m.op === "advertise") {
           const subs = [];
@@ -351,21 +354,54 @@
     if (!allowed) $("status").textContent = state.connected ? "commands are off (bridge started without --allow-commands)" : "";
   }
 
-  function sendCommand(name) {
-    if (!ws || ws.readyState !== WebSocket.OPEN) return;
-    if (commandChannelId === null) {
-      commandChannelId = 1;
-      ws.send(JSON.stringify({ op: "advertise", channels: [{ id: commandChannelId, topic: state.commandTopic,
-          encoding: "json", schemaName: "minenav.operator_command" }] }));
+  // A JSON message on one of the topics the server accepts (clientPublish).
+  function publish(topic, message) {
+    if (!ws || ws.readyState !== WebSocket.OPEN || !topic) return false;
+    if (!clientChannels.has(topic)) {
+      const id = clientChannels.size + 1;
+      clientChannels.set(topic, id);
+      ws.send(JSON.stringify({ op: "advertise", channels: [{ id, topic, encoding: "json", schemaName: "minenav.viewer.client" }] }));
     }
-    const payload = new TextEncoder().encode(JSON.stringify({ command: name }));
+    const payload = new TextEncoder().encode(JSON.stringify(message));
     const frame = new Uint8Array(5 + payload.length);
     frame[0] = 1;
-    new DataView(frame.buffer).setUint32(1, commandChannelId, true);
+    new DataView(frame.buffer).setUint32(1, clientChannels.get(topic), true);
     frame.set(payload, 5);
     ws.send(frame);
-    $("status").textContent = `${name} sent…`;
+    return true;
   }
+
+  function sendCommand(name) {
+    if (publish(state.commandTopic, { command: name })) $("status").textContent = `${name} sent…`;
+  }
+
+  // ---- replay of a log (viewer_bridge --replay) ----------------------------------------------
+  let sliderHeld = false;
+  function showReplay(r) {
+    if (state.replay && r.generation !== state.replay.generation) {
+      // A seek: what follows is the state at the new time, from nothing.
+      Object.assign(state, { map: null, walls: null, scan: null, pose: null, truth: null, path: null, drivePath: null,
+                             mission: null, track: [] });
+      $("vehicle").textContent = "no pose yet"; $("mission").textContent = "no MISSION_STATUS yet"; $("tree").innerHTML = "";
+    }
+    state.replay = r;
+    const slider = $("replay_slider");
+    slider.max = r.duration_s.toFixed(1);
+    if (!sliderHeld) slider.value = r.time_s.toFixed(1);
+    $("replay_time").textContent = `${r.time_s.toFixed(1)} s / ${r.duration_s.toFixed(1)} s`;
+    $("replay_play").textContent = r.paused ? "▶" : "⏸";
+  }
+  $("replay_slider").addEventListener("input", () => { sliderHeld = true; });
+  $("replay_slider").addEventListener("change", (e) => {
+    sliderHeld = false;
+    publish(state.replayTopic, { seek_s: Number(e.target.value) });
+  });
+  $("replay_play").addEventListener("click", () => {
+    if (!state.replay) return;
+    const atEnd = state.replay.time_s >= state.replay.duration_s;
+    publish(state.replayTopic, atEnd ? { seek_s: 0, paused: false } : { paused: !state.replay.paused });
+  });
+  $("replay_speed").addEventListener("change", (e) => publish(state.replayTopic, { speed: Number(e.target.value) }));
 
   for (const b of document.querySelectorAll("#commands button")) b.addEventListener("click", () => sendCommand(b.dataset.cmd));
   setButtons();
@@ -401,6 +437,6 @@
   for (const id of ["show_walls", "show_scan"]) $(id).addEventListener("change", () => { dirty = true; });
   window.addEventListener("resize", () => { dirty = true; });
 
-  window.minenavViewer = { state, view, stats, worldToScreen, screenToWorld, sendCommand, redraw: () => { dirty = true; } };
+  window.minenavViewer = { state, view, stats, worldToScreen, screenToWorld, sendCommand, publish, redraw: () => { dirty = true; } };
   connect();
 })();
