@@ -20,9 +20,6 @@
 #include "logger/mcap_writer.h"
 #include "logger/message_catalog.h"
 #include "minenav/contour_map_t.hpp"
-#include "minenav/ladar_scan_t.hpp"
-#include "minenav/line_map_t.hpp"
-#include "minenav/odometry_t.hpp"
 #include "minenav/pose_estimate_t.hpp"
 #include "minenav/vehicle_truth_t.hpp"
 #include "viewer/display_stream.h"
@@ -63,12 +60,6 @@ T Decode(const LogEvent& e) {
   std::string error;
   if (!DecodeMessage(e.data.data(), static_cast<int>(e.data.size()), e.channel, &m, &error)) throw InputError(error);
   return m;
-}
-
-std::vector<fs::Polyline> Lines(const std::vector<Segment>& segments) {
-  std::vector<fs::Polyline> out;
-  for (const Segment& s : segments) out.push_back({{s.a, s.b}, false});
-  return out;
 }
 
 }  // namespace
@@ -119,45 +110,18 @@ int RunExportMcapCommand(const std::vector<std::string>& in_args) {
       if (type == "minenav.contour_map_t") {
         const ContourMapMessage map = ContourMapFromLcm(Decode<contour_map_t>(*e));
         topics.Write(e->channel, kContourMapJsonName, kContourMapJsonSchema, log_ns, publish_ns, ContourMapJson(map));
-        if (foxglove) {
-          std::vector<fs::Polyline> lines;
-          for (const ContourPolyline& c : map.contours) lines.push_back({c.points, c.closed});
-          topics.Write("/foxglove/" + e->channel, fs::kSceneUpdate, fs::SchemaText(fs::kSceneUpdate), log_ns, publish_ns,
-                       fs::SceneLines(map.utime, "map", e->channel, lines, {0.12, 0.37, 0.75, 1.0}, 0.08));
-        }
-        continue;
+      } else {
+        json j;
+        std::string error;
+        const KnownMessageType* known = FindKnownTypeByName(type);
+        if (!known->to_json(e->data.data(), e->data.size(), &j, &error)) throw InputError(error);
+        topics.Write(e->channel, type, std::string(known->json_schema), log_ns, publish_ns, j);
       }
-      json j;
-      std::string error;
-      const KnownMessageType* known = FindKnownTypeByName(type);
-      if (!known->to_json(e->data.data(), e->data.size(), &j, &error)) throw InputError(error);
-      topics.Write(e->channel, type, std::string(known->json_schema), log_ns, publish_ns, j);
+      if (type == "minenav.pose_estimate_t" && e->channel == scan_pose_channel) estimate = Decode<pose_estimate_t>(*e).pose;
+      if (type == "minenav.vehicle_truth_t") truth = Decode<vehicle_truth_t>(*e).pose;
       if (!foxglove) continue;
-      const std::string fox = "/foxglove/" + e->channel;
-      if (type == "minenav.pose_estimate_t") {
-        const pose_estimate_t m = Decode<pose_estimate_t>(*e);
-        if (e->channel == scan_pose_channel) estimate = m.pose;
-        topics.Write(fox, fs::kPoseInFrame, fs::SchemaText(fs::kPoseInFrame), log_ns, publish_ns,
-                     fs::PoseInFrame(m.utime, "map", m.pose));
-      } else if (type == "minenav.vehicle_truth_t") {
-        const vehicle_truth_t m = Decode<vehicle_truth_t>(*e);
-        truth = m.pose;
-        topics.Write(fox, fs::kPoseInFrame, fs::SchemaText(fs::kPoseInFrame), log_ns, publish_ns,
-                     fs::PoseInFrame(m.utime, "map", m.pose));
-      } else if (type == "minenav.odometry_t") {
-        const odometry_t m = Decode<odometry_t>(*e);
-        topics.Write(fox, fs::kPoseInFrame, fs::SchemaText(fs::kPoseInFrame), log_ns, publish_ns,
-                     fs::PoseInFrame(m.utime, "odometry", m.pose));
-      } else if (type == "minenav.ladar_scan_t") {
-        const ladar_scan_t m = Decode<ladar_scan_t>(*e);
-        const std::optional<pose2d_t> at = estimate ? estimate : truth;
-        topics.Write(fox, fs::kLaserScan, fs::SchemaText(fs::kLaserScan), log_ns, publish_ns,
-                     fs::LaserScan(m, at ? "map" : "vehicle", at ? *at : pose2d_t{}));
-      } else if (type == "minenav.line_map_t") {
-        const line_map_t m = Decode<line_map_t>(*e);
-        topics.Write(fox, fs::kSceneUpdate, fs::SchemaText(fs::kSceneUpdate), log_ns, publish_ns,
-                     fs::SceneLines(m.utime, "map", e->channel, Lines(SegmentsFromLcm(m)), {0.5, 0.5, 0.5, 1.0}, 0.05));
-      }
+      if (auto f = fs::ToFoxglove(e->channel, type, e->data.data(), e->data.size(), estimate ? estimate : truth))
+        topics.Write("/foxglove/" + e->channel, f->first, fs::SchemaText(f->first), log_ns, publish_ns, f->second);
     } catch (const InputError& ex) {
       if (first_error.empty()) first_error = e->channel + " at byte " + std::to_string(e->offset) + ": " + ex.what();
       ++skipped;

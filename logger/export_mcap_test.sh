@@ -12,9 +12,7 @@ minenav_npm_ci "$root/tests/js"
 [ -d "$root/tests/js/node_modules/@mcap/core" ] || { echo "export_mcap_test: FAILED: npm @mcap/core is missing" >&2; exit 1; }
 
 rm -rf "$work"; mkdir -p "$work"; cd "$work"
-"$bin/log_tool" generate --kind mine --seed 1 --rows 1 --cols 2 --stations 6 --world-out world.json --stations-out stations.csv >/dev/null
-"$bin/log_tool" survey --world world.json --stations stations.csv --out survey.lcm --points 720 --station-interval 0.4 --quiet
-"$bin/viewer_test_log" survey.lcm known.lcm >/dev/null
+"$root/viewer/testing/make_known_log.sh" "$bin"
 "$bin/log_tool" info --json known.lcm > info.json
 # One more event on POSE that does not decode (an LCM event: magic, number, time, lengths, channel, data).
 python3 - known.lcm bad.lcm <<'PY'

@@ -22,9 +22,7 @@ session=spy
 cleanup() { tmux kill-server 2>/dev/null || true; }
 trap cleanup EXIT
 
-"$bin/log_tool" generate --kind mine --seed 1 --rows 1 --cols 2 --stations 6 --world-out world.json --stations-out stations.csv >/dev/null
-"$bin/log_tool" survey --world world.json --stations stations.csv --out survey.lcm --points 720 --station-interval 0.4 --quiet
-"$bin/viewer_test_log" survey.lcm known.lcm >/dev/null
+"$root/viewer/testing/make_known_log.sh" "$bin"
 python3 - bad.lcm <<'PY'
 import struct, sys
 open(sys.argv[1], "wb").write(struct.pack(">IqqII", 0xEDA1DA01, 0, 1000000000000000, 4, 3) + b"POSE" + b"\x01\x02\x03")

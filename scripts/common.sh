@@ -43,11 +43,15 @@ minenav_install_deps() { minenav_install_missing "${MINENAV_PACKAGES[@]}"; minen
 minenav_npm_ci() {
   local dir="$1"
   minenav_install_node
-  if [ -f "$dir/node_modules/.package-lock.json" ] && ! [ "$dir/package-lock.json" -nt "$dir/node_modules/.package-lock.json" ]; then
-    return 0
-  fi
-  echo "== installing npm packages of $dir (npm ci)"
-  (cd "$dir" && npm ci --no-audit --no-fund --loglevel=error)
+  # Tests that run at once (ctest -j) share DIR: one installs, the others wait for it.
+  (
+    flock 9
+    if [ -f "$dir/node_modules/.package-lock.json" ] && ! [ "$dir/package-lock.json" -nt "$dir/node_modules/.package-lock.json" ]; then
+      exit 0
+    fi
+    echo "== installing npm packages of $dir (npm ci)"
+    cd "$dir" && npm ci --no-audit --no-fund --loglevel=error
+  ) 9>"$dir/.npm-ci.lock"
 }
 
 # Only for bench/planner_ompl_bench (the planner against OMPL): the build and CI do not need

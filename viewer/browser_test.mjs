@@ -81,13 +81,23 @@ try {
   await page.waitForFunction(() => window.minenavViewer.state.map && window.minenavViewer.state.map.version === 2,
                              null, { timeout: 5000 });
 
-  // The screenshot decoded by the browser's own PNG decoder; pixels classified by colour.
+  // The canvas's screenshot, decoded in the page by the browser's own PNG decoder and kept as
+  // window.__shot (an ImageData) for the checks that run there.
   async function screenshotPixels() {
     const png = await page.locator("#map").screenshot();
-    return { png, url: "data:image/png;base64," + png.toString("base64") };
+    await page.evaluate(async (url) => {
+      const img = new Image();
+      img.src = url;
+      await img.decode();
+      const c = document.createElement("canvas");
+      c.width = img.width; c.height = img.height;
+      const g = c.getContext("2d");
+      g.drawImage(img, 0, 0);
+      window.__shot = g.getImageData(0, 0, c.width, c.height);
+    }, "data:image/png;base64," + png.toString("base64"));
   }
   async function mapCheck(dx, dy, view) {
-    const { url } = await screenshotPixels();
+    await screenshotPixels();
     const box = await page.locator("#map").boundingBox();
     // This script's own transform (x right, y up, the view's centre at the canvas centre).
     const samples = [];
@@ -98,15 +108,8 @@ try {
         samples.push([box.width / 2 + (x - view.cx) * view.scale, box.height / 2 - (y - view.cy) * view.scale]);
       }
     }
-    return page.evaluate(async ({ url, samples }) => {
-      const img = new Image();
-      img.src = url;
-      await img.decode();
-      const c = document.createElement("canvas");
-      c.width = img.width; c.height = img.height;
-      const g = c.getContext("2d");
-      g.drawImage(img, 0, 0);
-      const { data, width, height } = g.getImageData(0, 0, c.width, c.height);
+    return page.evaluate((samples) => {
+      const { data, width, height } = window.__shot;
       const blue = (x, y) => {
         if (x < 0 || y < 0 || x >= width || y >= height) return false;
         const i = 4 * (y * width + x);
@@ -132,7 +135,7 @@ try {
         if (!near[y * width + x]) stray++;
       }
       return { inside, hits, bluePixels, stray, width, height };
-    }, { url, samples });
+    }, samples);
   }
 
   // A fixed view on the whole world, walls and scan hidden: only the contour map is blue.
@@ -168,15 +171,9 @@ try {
     v.redraw();
   });
   await page.waitForTimeout(200);
-  const { url } = await screenshotPixels();
-  const centre = await page.evaluate(async (url) => {
-    const img = new Image();
-    img.src = url;
-    await img.decode();
-    const c = document.createElement("canvas");
-    c.width = img.width; c.height = img.height;
-    const g = c.getContext("2d");
-    g.drawImage(img, 0, 0);
+  await screenshotPixels();
+  const centre = await page.evaluate(() => {
+    const shot = window.__shot;
     // Two points inside the vehicle's polygon, behind its reference point on either side
     // (clear of the heading line, the 2-sigma ellipse and the true pose's outline).
     const v = window.minenavViewer;
@@ -185,11 +182,12 @@ try {
       const x = p.x - 0.6 * Math.cos(p.theta) - lateral * Math.sin(p.theta);
       const y = p.y - 0.6 * Math.sin(p.theta) + lateral * Math.cos(p.theta);
       const [px, py] = v.worldToScreen(x, y);
-      return Array.from(g.getImageData(Math.round(px), Math.round(py), 1, 1).data.slice(0, 3));
+      const i = 4 * (Math.round(py) * shot.width + Math.round(px));
+      return Array.from(shot.data.slice(i, i + 3));
     });
     const [sx, sy] = v.worldToScreen(p.x, p.y);
-    return { colours, sx, sy, w: img.width, h: img.height };
-  }, url);
+    return { colours, sx, sy, w: shot.width, h: shot.height };
+  });
   const vehicleColour = ([r, g, b]) => r > 200 && g > 150 && g < 225 && b < 190 && r - b > 50;
   check(Math.abs(centre.sx - centre.w / 2) < 1 && Math.abs(centre.sy - centre.h / 2) < 1, "the last pose is at the centre");
   check(centre.colours.some(vehicleColour),
@@ -228,8 +226,11 @@ try {
     await page.waitForFunction(() => window.minenavViewer.state.replay && !document.getElementById("replay").hidden,
                                null, { timeout: 10000 });
     check(true, "replay: the time slider is shown");
-    await page.click("#replay_play");
-    await page.waitForFunction(() => window.minenavViewer.state.replay.paused, null, { timeout: 5000 });
+    // Pause with the button unless the replay already ran to the end (where it pauses).
+    if (!(await page.evaluate(() => window.minenavViewer.state.replay.paused))) {
+      await page.click("#replay_play");
+      await page.waitForFunction(() => window.minenavViewer.state.replay.paused, null, { timeout: 5000 });
+    }
     const generation = await page.evaluate(() => window.minenavViewer.state.replay.generation);
     await page.locator("#replay_slider").fill("1");
     await page.waitForFunction((g) => {

@@ -26,15 +26,14 @@ rm -rf "$work"; mkdir -p "$work"; cd "$work"
 pids=()
 cleanup() { for p in "${pids[@]}"; do kill "$p" 2>/dev/null || true; done; wait 2>/dev/null || true; }
 trap cleanup EXIT
+bridges=()
 
-"$bin/log_tool" generate --kind mine --seed 1 --rows 1 --cols 2 --stations 6 --world-out world.json --stations-out stations.csv >/dev/null
-"$bin/log_tool" survey --world world.json --stations stations.csv --out survey.lcm --points 720 --station-interval 0.4 --quiet
-"$bin/viewer_test_log" survey.lcm known.lcm
+"$here/testing/make_known_log.sh" "$bin"
 
 port=8765
 "$bin/viewer_bridge" --port $port --allow-commands --display.vehicle-width 1.2 --display.vehicle-length 2 \
   --display.max-scan-rate 10 --display.max-channel-rate 50 2> bridge.log &
-pids+=($!)
+pids+=($!); bridges+=($!)
 "$bin/log_tool" record --out commands.lcm --channels COORDINATOR_COMMAND 2> record.log &
 record_pid=$!
 pids+=($record_pid)
@@ -44,9 +43,9 @@ for _ in $(seq 50); do
 done
 
 # The same log read directly by a second bridge, with the time slider.
-"$bin/viewer_bridge" --port $((port + 1)) --replay known.lcm --display.vehicle-width 1.2 --display.vehicle-length 2 \
+"$bin/viewer_bridge" --port $((port + 1)) --replay known.lcm --replay-speed 0.1 --display.vehicle-width 1.2 --display.vehicle-length 2 \
   --heartbeat-period 0 2> replay_bridge.log &
-pids+=($!)
+pids+=($!); bridges+=($!)
 for _ in $(seq 50); do
   (exec 3<>/dev/tcp/127.0.0.1/$((port + 1))) 2>/dev/null && break
   sleep 0.1
@@ -66,4 +65,13 @@ assert cmd and cmd["count"] == 1, f"expected one COORDINATOR_COMMAND on the bus,
 assert cmd["latest"]["command"] == 1 and cmd["latest"]["seq"] == 1, f"not PAUSE seq 1: {cmd['latest']}"
 print("browser_test: PAUSE reached the bus:", json.dumps(cmd["latest"]))
 PY
+# The bridges end cleanly on SIGTERM (and, in the sanitizer build, without a report).
+for p in "${bridges[@]}"; do kill -TERM "$p"; done
+status=0
+for p in "${bridges[@]}"; do wait "$p" || status=$?; done
+if [ $status -ne 0 ] || grep -q "Sanitizer" bridge.log replay_bridge.log; then
+  echo "browser_test: FAILED: a bridge did not end cleanly (exit $status):" >&2
+  tail -20 bridge.log replay_bridge.log >&2
+  exit 1
+fi
 echo "browser_test: passed"

@@ -14,6 +14,8 @@
 #include "minenav/ladar_scan_t.hpp"
 #include "minenav/line_map_t.hpp"
 #include "minenav/message_json.hpp"
+#include "minenav/pose_estimate_t.hpp"
+#include "viewer/foxglove_schemas.h"
 
 namespace minenav {
 namespace {
@@ -163,6 +165,38 @@ std::optional<DisplayMessage> DisplayStream::OnMessage(std::string_view channel_
     out = std::move(m);
   }
   if (out) ++counters_.shown;
+  return out;
+}
+
+std::vector<DisplayMessage> DisplayStream::OnMessageWithFoxglove(std::string_view channel_view, const uint8_t* data,
+                                                                 size_t size, int64_t receive_utime) {
+  std::vector<DisplayMessage> out;
+  std::optional<DisplayMessage> d = OnMessage(channel_view, data, size, receive_utime);
+  if (!d) return out;
+  const std::string channel(channel_view);
+  const std::string type = d->schema_name == "minenav.viewer.scan"  ? "minenav.ladar_scan_t"
+                           : d->schema_name == kContourMapJsonName ? "minenav.contour_map_t"
+                                                                   : d->schema_name;
+  if (channel == "POSE" && type == "minenav.pose_estimate_t") {
+    pose_estimate_t m{};
+    std::string error;
+    if (DecodeMessage(data, static_cast<int>(size), channel, &m, &error)) latest_pose_ = m.pose;
+  }
+  // The page's scan shows every stride-th reading; Foxglove gets the same ones.
+  const size_t stride = type == "minenav.ladar_scan_t" ? json::parse(d->payload)["stride"].get<size_t>() : 1;
+  if (auto f = foxglove_schemas::ToFoxglove(channel, type, data, size, latest_pose_, stride)) {
+    DisplayMessage m;
+    m.topic = "/foxglove/" + channel;
+    m.schema_name = f->first;
+    m.schema = foxglove_schemas::SchemaText(f->first);
+    m.payload = Dump(f->second);
+    m.utime = d->utime;
+    m.latched = d->latched;
+    out.push_back(std::move(*d));
+    out.push_back(std::move(m));
+  } else {
+    out.push_back(std::move(*d));
+  }
   return out;
 }
 

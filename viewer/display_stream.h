@@ -21,6 +21,7 @@
 #include "common/config.h"
 #include "common/node/contour_map_conversions.h"
 #include "minenav/heartbeat_t.hpp"
+#include "minenav/pose2d_t.hpp"
 
 namespace minenav {
 
@@ -72,6 +73,12 @@ class DisplayStream {
   // the channel) when a minenav payload does not decode or is invalid.
   std::optional<DisplayMessage> OnMessage(std::string_view channel, const uint8_t* data, size_t size,
                                           int64_t receive_utime);
+  // With each display message of a pose, scan, map or walls, the same in Foxglove's
+  // well-known schema on "/foxglove/<channel>" (foxglove_schemas.h), so Foxglove's 3D panel
+  // draws the live bus: PoseInFrame, LaserScan (decimated like the page's, at the latest POSE),
+  // SceneUpdate line strips. Empty when the message is not shown.
+  std::vector<DisplayMessage> OnMessageWithFoxglove(std::string_view channel, const uint8_t* data, size_t size,
+                                                    int64_t receive_utime);
 
   // The fleet table at `now`: one row per process and instance seen on HEARTBEAT.
   DisplayMessage FleetTable(int64_t now) const;
@@ -95,6 +102,7 @@ class DisplayStream {
 
   DisplayOptions options_;
   DisplayCounters counters_;
+  std::optional<pose2d_t> latest_pose_;  // POSE, for the Foxglove scans
   std::map<std::string, int64_t> last_sent_;      // topic -> receive utime of the last message sent
   std::map<std::string, int64_t> last_version_;   // topic -> version of the map or walls sent
   std::map<std::string, Process> processes_;      // "process/instance"

@@ -228,3 +228,42 @@ TEST(DisplayStreamTest, BadPayloadsThrowOneLineAndForeignChannelsAreIgnored) {
 
 }  // namespace
 }  // namespace minenav
+
+namespace minenav {
+namespace {
+
+TEST(DisplayStreamTest, FoxgloveSchemasBesideTheShownMessages) {
+  DisplayStream s(DisplayOptions{});
+  pose_estimate_t p{};
+  p.utime = kT0;
+  p.pose.x = 10.0;
+  p.pose.y = 5.0;
+  p.pose.theta = M_PI / 2;
+  std::vector<uint8_t> bytes = EncodeMessage(p);
+  const auto poses = s.OnMessageWithFoxglove("POSE", bytes.data(), bytes.size(), kT0);
+  ASSERT_EQ(poses.size(), 2u);
+  EXPECT_EQ(poses[1].topic, "/foxglove/POSE");
+  EXPECT_EQ(poses[1].schema_name, "foxglove.PoseInFrame");
+  const json fp = json::parse(poses[1].payload);
+  EXPECT_EQ(fp["frame_id"], "map");
+  EXPECT_NEAR(fp["pose"]["orientation"]["z"].get<double>(), std::sin(M_PI / 4), 1e-12);
+  EXPECT_NEAR(fp["pose"]["orientation"]["w"].get<double>(), std::cos(M_PI / 4), 1e-12);
+
+  ladar_scan_t scan = Scan(2048);
+  scan.sensor_offset.x = 1.0;  // 1 m ahead of the vehicle: at (10, 6) when facing +y
+  bytes = EncodeMessage(scan);
+  const auto scans = s.OnMessageWithFoxglove("LADAR_SCAN", bytes.data(), bytes.size(), kT0);
+  ASSERT_EQ(scans.size(), 2u);
+  const json page = json::parse(scans[0].payload), fox = json::parse(scans[1].payload);
+  EXPECT_EQ(scans[1].schema_name, "foxglove.LaserScan");
+  EXPECT_EQ(fox["ranges"].size(), page["ranges"].size());  // the same decimated readings
+  EXPECT_NEAR(fox["pose"]["position"]["x"].get<double>(), 10.0, 1e-9);
+  EXPECT_NEAR(fox["pose"]["position"]["y"].get<double>(), 6.0, 1e-9);
+  EXPECT_NEAR(fox["end_angle"].get<double>() - fox["start_angle"].get<double>(),
+              (static_cast<double>(page["ranges"].size()) - 1) * page["angle_step"].get<double>(), 1e-6);
+  // A throttled message has no Foxglove twin either.
+  EXPECT_TRUE(s.OnMessageWithFoxglove("LADAR_SCAN", bytes.data(), bytes.size(), kT0 + 1).empty());
+}
+
+}  // namespace
+}  // namespace minenav

@@ -1,7 +1,17 @@
 #include "viewer/foxglove_schemas.h"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
+
+#include "common/file_io.h"
+#include "common/node/contour_map_conversions.h"
+#include "common/node/conversions.h"
+#include "minenav/contour_map_t.hpp"
+#include "minenav/line_map_t.hpp"
+#include "minenav/odometry_t.hpp"
+#include "minenav/pose_estimate_t.hpp"
+#include "minenav/vehicle_truth_t.hpp"
 
 namespace minenav::foxglove_schemas {
 
@@ -148,6 +158,63 @@ json SceneLines(int64_t utime, const std::string& frame, const std::string& id, 
                  {"texts", json::array()},
                  {"models", json::array()}};
   return {{"deletions", json::array()}, {"entities", json::array({std::move(entity)})}};
+}
+
+namespace {
+
+template <typename T>
+T Decode(const std::string& channel, const uint8_t* data, size_t size) {
+  T m{};
+  std::string error;
+  if (!DecodeMessage(data, static_cast<int>(size), channel, &m, &error)) throw InputError(error);
+  return m;
+}
+
+}  // namespace
+
+std::optional<std::pair<std::string, json>> ToFoxglove(const std::string& channel, const std::string& type,
+                                                       const uint8_t* data, size_t size,
+                                                       const std::optional<pose2d_t>& scan_at, size_t scan_stride) {
+  if (type == "minenav.pose_estimate_t") {
+    const auto m = Decode<pose_estimate_t>(channel, data, size);
+    return std::pair{std::string(kPoseInFrame), PoseInFrame(m.utime, "map", m.pose)};
+  }
+  if (type == "minenav.vehicle_truth_t") {
+    const auto m = Decode<vehicle_truth_t>(channel, data, size);
+    return std::pair{std::string(kPoseInFrame), PoseInFrame(m.utime, "map", m.pose)};
+  }
+  if (type == "minenav.odometry_t") {
+    const auto m = Decode<odometry_t>(channel, data, size);
+    return std::pair{std::string(kPoseInFrame), PoseInFrame(m.utime, "odometry", m.pose)};
+  }
+  if (type == "minenav.ladar_scan_t") {
+    ladar_scan_t m = Decode<ladar_scan_t>(channel, data, size);
+    const size_t stride = std::max<size_t>(1, scan_stride);
+    if (stride > 1) {
+      std::vector<float> kept;
+      for (size_t i = 0; i < m.ranges.size(); i += stride) kept.push_back(m.ranges[i]);
+      m.ranges = std::move(kept);
+      m.num_ranges = static_cast<int32_t>(m.ranges.size());
+      m.intensities.clear();
+      m.num_intensities = 0;
+      m.angle_step = static_cast<float>(static_cast<double>(m.angle_step) * static_cast<double>(stride));
+    }
+    return std::pair{std::string(kLaserScan), LaserScan(m, scan_at ? "map" : "vehicle", scan_at.value_or(pose2d_t{}))};
+  }
+  if (type == "minenav.line_map_t") {
+    const auto m = Decode<line_map_t>(channel, data, size);
+    std::vector<Polyline> lines;
+    for (const line_segment_t& s : m.segments) lines.push_back({{{s.x1, s.y1}, {s.x2, s.y2}}, false});
+    return std::pair{std::string(kSceneUpdate), SceneLines(m.utime, "map", channel, lines, {0.5, 0.5, 0.5, 1.0}, 0.05)};
+  }
+  if (type == "minenav.contour_map_t") {
+    const ContourMapMessage map = ContourMapFromLcm(Decode<contour_map_t>(channel, data, size));
+    std::vector<Polyline> lines;
+    for (const ContourPolyline& c : map.contours) lines.push_back({c.points, c.closed});
+    return std::pair{std::string(kSceneUpdate),
+                     SceneLines(map.utime, "map", channel, lines, {0.12, 0.37, 0.75, 1.0}, 0.08)};
+  }
+  return std::nullopt;
 }
 
 }  // namespace minenav::foxglove_schemas

@@ -7,7 +7,9 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -37,5 +39,15 @@ struct Polyline {
 };
 nlohmann::json SceneLines(int64_t utime, const std::string& frame, const std::string& id,
                           const std::vector<Polyline>& lines, const Rgba& color, double thickness_m);
+
+// A message of minenav type `type_name` ("minenav.pose_estimate_t") in Foxglove's schema, when
+// its type has one: {schema name, JSON}. Poses, true poses (frame map) and odometry (frame
+// odometry) as PoseInFrame; scans as LaserScan at `scan_at` (frame map; nullopt: frame vehicle),
+// every `scan_stride`-th reading; line maps and (inflated) contour maps as SceneUpdate line strips.
+// Throws InputError when the payload does not decode.
+std::optional<std::pair<std::string, nlohmann::json>> ToFoxglove(const std::string& channel, const std::string& type_name,
+                                                                 const uint8_t* data, size_t size,
+                                                                 const std::optional<pose2d_t>& scan_at,
+                                                                 size_t scan_stride = 1);
 
 }  // namespace minenav::foxglove_schemas

@@ -3,6 +3,12 @@
 // WebSocket in the Foxglove protocol (Foxglove or Lichtblick connect to the same address).
 // viewer/README.md; the node is viewer/viewer_bridge_node.h.
 
+#include <fcntl.h>
+#include <sched.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
 #include <map>
 #include <memory>
 #include <string>
@@ -14,6 +20,19 @@
 #include "viewer/viewer_page_text.h"
 
 namespace {
+
+// The calling thread (the one that will make the LCM socket) joins the network namespace at
+// `path`; sockets made before (the page's) stay where they were made.
+void JoinNetworkNamespace(const std::string& path) {
+  const int fd = open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) throw minenav::UsageError("--net-namespace " + path + ": " + std::strerror(errno));
+  const int rc = setns(fd, CLONE_NEWNET);
+  const int error = errno;
+  close(fd);
+  if (rc != 0)
+    throw minenav::UsageError("--net-namespace " + path + ": cannot join (" + std::strerror(error) +
+                              "; joining another namespace needs root)");
+}
 
 std::map<std::string, minenav::StaticFile> PageFiles() {
   std::map<std::string, minenav::StaticFile> files;
@@ -61,6 +80,10 @@ int main(int argc, char** argv) {
         if (options.allow_commands && options.server.address != "127.0.0.1" && options.server.address != "::1")
           MINENAV_LOG(kWarn) << "--allow-commands on " << options.server.address
                              << ": anyone who reaches this address can stop or start the vehicle (commands are not signed yet)";
+        if (!options.net_namespace.empty()) {
+          JoinNetworkNamespace(options.net_namespace);
+          MINENAV_LOG(kInfo) << "on the bus of network namespace " << options.net_namespace;
+        }
         runtime.Start();
         ViewerBridgeNode node(runtime, options, server, replay.get());
         const int code = node.Run();

@@ -39,6 +39,9 @@ void DeclareOptions(ConfigSchema& schema, ViewerBridgeOptions& o) {
   s.AddString("replay", &o.replay,
               "show this LCM log with a time slider instead of the bus (loaded into memory; commands are refused)");
   s.AddDouble("replay_speed", &o.replay_speed, "", "log seconds played per second at the start", 0.01, 100.0);
+  s.AddString("net_namespace", &o.net_namespace,
+              "network namespace of the bus, e.g. /proc/PID/ns/net of a process of the demo: the page's port opens "
+              "here, then the bridge joins that namespace for LCM (needs root; viewer/view_demo.sh)");
 }
 
 ViewerBridgeNode::ViewerBridgeNode(NodeRuntime& runtime, ViewerBridgeOptions options, ViewerServer& server,
@@ -71,8 +74,7 @@ ViewerBridgeNode::ViewerBridgeNode(NodeRuntime& runtime, ViewerBridgeOptions opt
 }
 
 void ViewerBridgeNode::Show(std::string_view channel, const uint8_t* data, size_t size, int64_t utime) {
-  std::optional<DisplayMessage> d = stream_.OnMessage(channel, data, size, utime);
-  if (d) server_.Publish(std::move(*d));
+  for (DisplayMessage& d : stream_.OnMessageWithFoxglove(channel, data, size, utime)) server_.Publish(std::move(d));
 }
 
 void ViewerBridgeNode::PublishTables(int64_t now) {

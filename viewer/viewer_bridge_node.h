@@ -29,6 +29,7 @@ struct ViewerBridgeOptions {
   double command_poll_period = 0.02;                 // s between looks at the clients' commands
   std::string replay;                                // a log to show with a time slider instead of the bus
   double replay_speed = 1.0;                         // log seconds per second at the start
+  std::string net_namespace;                         // join it for the bus after the port is open (a demo's)
 };
 void DeclareOptions(ConfigSchema& schema, ViewerBridgeOptions& o);
 

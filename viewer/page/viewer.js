@@ -219,9 +219,11 @@
   function showVehicle() {
     if (!state.pose) return;
     const p = state.pose.pose, c = state.pose.covariance;
-    let html = `x ${p.x.toFixed(2)} m, y ${p.y.toFixed(2)} m, θ ${deg(p.theta)}°<br>` +
+    const sigma = c.every((v) => v === 0) ? "covariance not given" :
         `σx ${Math.sqrt(Math.max(0, c[0])).toFixed(3)} m, σy ${Math.sqrt(Math.max(0, c[4])).toFixed(3)} m, ` +
-        `σθ ${deg(Math.sqrt(Math.max(0, c[8])))}° · ${esc(state.pose.source)} ${state.pose.converged ? "" : "(not converged)"}`;
+        `σθ ${deg(Math.sqrt(Math.max(0, c[8])))}°`;
+    let html = `x ${p.x.toFixed(2)} m, y ${p.y.toFixed(2)} m, θ ${deg(p.theta)}°<br>` +
+        `${sigma} · ${esc(state.pose.source)} ${state.pose.converged ? "" : "(not converged)"}`;
     if (state.truth) {
       const t = state.truth.pose;
       html += `<br>true pose off by ${Math.hypot(t.x - p.x, t.y - p.y).toFixed(3)} m, ` +
