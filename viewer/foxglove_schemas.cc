@@ -30,77 +30,35 @@ json Pose(double x, double y, double theta) {
           {"orientation", {{"x", 0.0}, {"y", 0.0}, {"z", std::sin(theta / 2)}, {"w", std::cos(theta / 2)}}}};
 }
 
-constexpr const char* kTimeSchema =
-    R"js({"type":"object","properties":{"sec":{"type":"integer","minimum":0},"nsec":{"type":"integer","minimum":0,"maximum":999999999}}})js";
-constexpr const char* kVector3Schema =
-    R"js({"type":"object","properties":{"x":{"type":"number"},"y":{"type":"number"},"z":{"type":"number"}}})js";
-constexpr const char* kQuaternionSchema =
-    R"js({"type":"object","properties":{"x":{"type":"number"},"y":{"type":"number"},"z":{"type":"number"},"w":{"type":"number"}}})js";
+// JSON Schemas of the fields we write (text: building them with nlohmann::json costs compile time).
+#define MINENAV_TIME R"js({"type":"object","properties":{"sec":{"type":"integer","minimum":0},"nsec":{"type":"integer","minimum":0,"maximum":999999999}}})js"
+#define MINENAV_VECTOR3 R"js({"type":"object","properties":{"x":{"type":"number"},"y":{"type":"number"},"z":{"type":"number"}}})js"
+#define MINENAV_POSE R"js({"type":"object","properties":{"position":)js" MINENAV_VECTOR3 R"js(,"orientation":{"type":"object","properties":{"x":{"type":"number"},"y":{"type":"number"},"z":{"type":"number"},"w":{"type":"number"}}}}})js"
+#define MINENAV_COLOR R"js({"type":"object","properties":{"r":{"type":"number"},"g":{"type":"number"},"b":{"type":"number"},"a":{"type":"number"}}})js"
 
-json PoseSchema() {
-  return {{"type", "object"},
-          {"properties", {{"position", json::parse(kVector3Schema)}, {"orientation", json::parse(kQuaternionSchema)}}}};
-}
-
-std::map<std::string, std::string> MakeSchemas() {
-  const json time = json::parse(kTimeSchema);
-  std::map<std::string, std::string> s;
-  s[kPoseInFrame] = json{{"title", kPoseInFrame},
-                         {"type", "object"},
-                         {"properties", {{"timestamp", time}, {"frame_id", {{"type", "string"}}}, {"pose", PoseSchema()}}}}
-                        .dump();
-  s[kLaserScan] =
-      json{{"title", kLaserScan},
-           {"type", "object"},
-           {"properties",
-            {{"timestamp", time},
-             {"frame_id", {{"type", "string"}}},
-             {"pose", PoseSchema()},
-             {"start_angle", {{"type", "number"}}},
-             {"end_angle", {{"type", "number"}}},
-             {"ranges", {{"type", "array"}, {"items", {{"type", {"number", "null"}}}}}},
-             {"intensities", {{"type", "array"}, {"items", {{"type", "number"}}}}}}}}
-          .dump();
-  const json color = {{"type", "object"},
-                      {"properties", {{"r", {{"type", "number"}}}, {"g", {{"type", "number"}}}, {"b", {{"type", "number"}}}, {"a", {{"type", "number"}}}}}};
-  const json line = {{"type", "object"},
-                     {"properties",
-                      {{"type", {{"type", "integer"}, {"description", "0 LINE_STRIP, 1 LINE_LOOP, 2 LINE_LIST"}}},
-                       {"pose", PoseSchema()},
-                       {"thickness", {{"type", "number"}}},
-                       {"scale_invariant", {{"type", "boolean"}}},
-                       {"points", {{"type", "array"}, {"items", json::parse(kVector3Schema)}}},
-                       {"color", color},
-                       {"colors", {{"type", "array"}, {"items", color}}},
-                       {"indices", {{"type", "array"}, {"items", {{"type", "integer"}}}}}}}};
-  const json entity = {{"type", "object"},
-                       {"properties",
-                        {{"timestamp", time},
-                         {"frame_id", {{"type", "string"}}},
-                         {"id", {{"type", "string"}}},
-                         {"lifetime", {{"type", "object"}}},
-                         {"frame_locked", {{"type", "boolean"}}},
-                         {"metadata", {{"type", "array"}}},
-                         {"arrows", {{"type", "array"}}},
-                         {"cubes", {{"type", "array"}}},
-                         {"spheres", {{"type", "array"}}},
-                         {"cylinders", {{"type", "array"}}},
-                         {"lines", {{"type", "array"}, {"items", line}}},
-                         {"triangles", {{"type", "array"}}},
-                         {"texts", {{"type", "array"}}},
-                         {"models", {{"type", "array"}}}}}};
-  s[kSceneUpdate] = json{{"title", kSceneUpdate},
-                         {"type", "object"},
-                         {"properties",
-                          {{"deletions", {{"type", "array"}}}, {"entities", {{"type", "array"}, {"items", entity}}}}}}
-                        .dump();
-  return s;
-}
+constexpr const char* kPoseInFrameSchema =
+    R"js({"title":"foxglove.PoseInFrame","type":"object","properties":{"timestamp":)js" MINENAV_TIME
+    R"js(,"frame_id":{"type":"string"},"pose":)js" MINENAV_POSE R"js(}})js";
+constexpr const char* kLaserScanSchema =
+    R"js({"title":"foxglove.LaserScan","type":"object","properties":{"timestamp":)js" MINENAV_TIME
+    R"js(,"frame_id":{"type":"string"},"pose":)js" MINENAV_POSE
+    R"js(,"start_angle":{"type":"number"},"end_angle":{"type":"number"},"ranges":{"type":"array","items":{"type":["number","null"]}},"intensities":{"type":"array","items":{"type":"number"}}}})js";
+constexpr const char* kSceneUpdateSchema =
+    R"js({"title":"foxglove.SceneUpdate","type":"object","properties":{"deletions":{"type":"array"},"entities":{"type":"array","items":{"type":"object","properties":{"timestamp":)js" MINENAV_TIME
+    R"js(,"frame_id":{"type":"string"},"id":{"type":"string"},"lifetime":{"type":"object"},"frame_locked":{"type":"boolean"},"metadata":{"type":"array"},"arrows":{"type":"array"},"cubes":{"type":"array"},"spheres":{"type":"array"},"cylinders":{"type":"array"},"lines":{"type":"array","items":{"type":"object","properties":{"type":{"type":"integer","description":"0 LINE_STRIP, 1 LINE_LOOP, 2 LINE_LIST"},"pose":)js" MINENAV_POSE
+    R"js(,"thickness":{"type":"number"},"scale_invariant":{"type":"boolean"},"points":{"type":"array","items":)js" MINENAV_VECTOR3
+    R"js(},"color":)js" MINENAV_COLOR R"js(,"colors":{"type":"array","items":)js" MINENAV_COLOR
+    R"js(},"indices":{"type":"array","items":{"type":"integer"}}}}},"triangles":{"type":"array"},"texts":{"type":"array"},"models":{"type":"array"}}}}}})js";
+#undef MINENAV_TIME
+#undef MINENAV_VECTOR3
+#undef MINENAV_POSE
+#undef MINENAV_COLOR
 
 }  // namespace
 
 const std::string& SchemaText(const std::string& name) {
-  static const std::map<std::string, std::string> schemas = MakeSchemas();
+  static const std::map<std::string, std::string> schemas = {
+      {kPoseInFrame, kPoseInFrameSchema}, {kLaserScan, kLaserScanSchema}, {kSceneUpdate, kSceneUpdateSchema}};
   static const std::string none;
   const auto it = schemas.find(name);
   return it == schemas.end() ? none : it->second;

@@ -5,25 +5,16 @@
 
 #include <gtest/gtest.h>
 
-#include <boost/asio/connect.hpp>
-#include <boost/asio/ip/tcp.hpp>
-#include <boost/beast/core.hpp>
-#include <boost/beast/http.hpp>
-#include <boost/beast/websocket.hpp>
-
+#include <atomic>
 #include <chrono>
 #include <nlohmann/json.hpp>
-#include <atomic>
 #include <thread>
+
+#include "viewer/testing/websocket_test_client.h"
 
 namespace minenav {
 namespace {
 
-namespace asio = boost::asio;
-namespace beast = boost::beast;
-namespace http = boost::beast::http;
-namespace websocket = boost::beast::websocket;
-using tcp = boost::asio::ip::tcp;
 using nlohmann::json;
 
 DisplayMessage Message(const std::string& topic, const std::string& payload, bool latched = false) {
@@ -49,35 +40,11 @@ std::unique_ptr<FoxgloveServer> StartServer(std::vector<std::string> publish_top
   return s;
 }
 
-// A blocking Foxglove client with a read timeout.
-class Client {
+// The Foxglove client of the tests: JSON frames on the raw WebSocket client.
+class Client : public testing::WebSocketTestClient {
  public:
-  explicit Client(int port, const std::string& origin = "") : ws_(ioc_) {
-    tcp::resolver resolver(ioc_);
-    beast::get_lowest_layer(ws_).connect(*resolver.resolve("127.0.0.1", std::to_string(port)).begin());
-    ws_.set_option(websocket::stream_base::decorator([origin](websocket::request_type& req) {
-      req.set(http::field::sec_websocket_protocol, "foxglove.websocket.v1");
-      if (!origin.empty()) req.set(http::field::origin, origin);
-    }));
-    websocket::response_type res;
-    ws_.handshake(res, "127.0.0.1:" + std::to_string(port), "/");
-    protocol_ = std::string(res[http::field::sec_websocket_protocol]);
-  }
-  const std::string& protocol() const { return protocol_; }
-
-  // The next frame: text (JSON) or binary; "" on close or after 5 s.
-  std::string Next(bool* binary = nullptr) {
-    beast::get_lowest_layer(ws_).expires_after(std::chrono::seconds(5));
-    beast::flat_buffer b;
-    beast::error_code ec;
-    ws_.read(b, ec);
-    if (ec) {
-      error_ = ec;
-      return "";
-    }
-    if (binary) *binary = ws_.got_binary();
-    return beast::buffers_to_string(b.data());
-  }
+  explicit Client(int port, const std::string& origin = "")
+      : WebSocketTestClient(port, "foxglove.websocket.v1", origin) {}
   json NextJson() {
     bool binary = true;
     const std::string s = Next(&binary);
@@ -94,21 +61,6 @@ class Client {
     }
     return json();
   }
-  void SendText(const std::string& s) {
-    ws_.text(true);
-    ws_.write(asio::buffer(s));
-  }
-  void SendBinary(const std::string& s) {
-    ws_.binary(true);
-    ws_.write(asio::buffer(s));
-  }
-  beast::error_code error() const { return error_; }
-
- private:
-  asio::io_context ioc_;
-  websocket::stream<beast::tcp_stream> ws_;
-  std::string protocol_;
-  beast::error_code error_;
 };
 
 // The channel id of `topic` in an advertise.
@@ -120,18 +72,20 @@ int64_t ChannelId(const json& advertise, const std::string& topic) {
 
 TEST(FoxgloveServerTest, ServesThePageOverHttp) {
   auto server = StartServer();
-  asio::io_context ioc;
-  beast::tcp_stream stream(ioc);
-  tcp::resolver resolver(ioc);
-  stream.connect(*resolver.resolve("127.0.0.1", std::to_string(server->port())).begin());
-  http::request<http::empty_body> req(http::verb::get, "/", 11);
-  req.set(http::field::host, "127.0.0.1");
-  http::write(stream, req);
-  beast::flat_buffer b;
-  http::response<http::string_body> res;
-  http::read(stream, b, res);
-  EXPECT_EQ(res.result(), http::status::ok);
-  EXPECT_EQ(res.body(), "<html>page</html>");
+  const int fd = socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in a{};
+  a.sin_family = AF_INET;
+  a.sin_port = htons(static_cast<uint16_t>(server->port()));
+  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  ASSERT_EQ(connect(fd, reinterpret_cast<const sockaddr*>(&a), sizeof(a)), 0);
+  const std::string req = "GET / HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n";
+  ASSERT_EQ(send(fd, req.data(), req.size(), 0), static_cast<ssize_t>(req.size()));
+  std::string res;
+  char buf[4096];
+  for (ssize_t n; (n = recv(fd, buf, sizeof(buf), 0)) > 0;) res.append(buf, static_cast<size_t>(n));
+  close(fd);
+  EXPECT_EQ(res.rfind("HTTP/1.1 200", 0), 0u) << res.substr(0, 80);
+  EXPECT_EQ(res.substr(res.find("\r\n\r\n") + 4), "<html>page</html>");
 }
 
 TEST(FoxgloveServerTest, HandshakeAdvertiseSubscribeAndLatchedMessages) {
@@ -213,9 +167,7 @@ TEST(FoxgloveServerTest, HostileClientsGetOneErrorLineAndAreDropped) {
     EXPECT_EQ(status["level"], 2) << payload.substr(0, 60);
     EXPECT_EQ(status["message"].get<std::string>().find('\n'), std::string::npos);
     EXPECT_EQ(c.Next(), "");  // then closed
-    EXPECT_TRUE(c.error() == websocket::error::closed || c.error() == asio::error::eof ||
-                c.error() == asio::error::connection_reset)
-        << c.error().message();
+    EXPECT_TRUE(c.closed());
   }
   EXPECT_GE(server->counters().clients_dropped.load(), static_cast<int64_t>(hostile.size()) - 1);
 }
