@@ -21,7 +21,7 @@ import re
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from lcm_wire_check import load, strip_comments  # noqa: E402
+from lcm_wire_check import load, strip_comments, write_if_changed  # noqa: E402
 
 INTEGERS = {"int8_t", "int16_t", "int32_t", "int64_t"}
 FLOATS = {"float", "double"}
@@ -179,15 +179,7 @@ def main():
     for name in order:
         out.append(f"  f.template operator()<{name}>();")
     out += ["}", "", f"}}  // namespace {package}"]
-    text = "\n".join(out) + "\n"
-    try:
-        if open(out_path, encoding="utf-8").read() == text:
-            return
-    except OSError:
-        pass
-    os.makedirs(os.path.dirname(out_path), exist_ok=True)
-    with open(out_path, "w", encoding="utf-8") as f:
-        f.write(text)
+    write_if_changed(out_path, "\n".join(out) + "\n")
 
 
 if __name__ == "__main__":

@@ -14,6 +14,7 @@ O(1)).
 
 Usage: lcm_wire_check.py OUT.hpp A.lcm B.lcm ...
 """
+import os
 import re
 import sys
 
@@ -255,13 +256,18 @@ def main():
             "",
         ]
     out.append(f"}}  // namespace {package}::wire")
-    text = "\n".join(out) + "\n"
+    write_if_changed(out_path, "\n".join(out) + "\n")
+
+
+def write_if_changed(path, text):
+    """Writes `text` unless the file already holds it (so what includes it is not rebuilt)."""
     try:
-        if open(out_path, encoding="utf-8").read() == text:
+        if open(path, encoding="utf-8").read() == text:
             return
     except OSError:
         pass
-    with open(out_path, "w", encoding="utf-8") as f:
+    os.makedirs(os.path.dirname(path) or ".", exist_ok=True)
+    with open(path, "w", encoding="utf-8") as f:
         f.write(text)
 
 
