@@ -59,3 +59,31 @@ function(minenav_lcm_types)
   # middle end flags after inlining; SYSTEM does not silence middle-end warnings.
   target_compile_options(${ARG_TARGET} INTERFACE -Wno-maybe-uninitialized)
 endfunction()
+
+# minenav_lcm_json(TARGET <name> TYPES <lcm types target> FILES a.lcm ...)
+# minenav/message_json.hpp (cmake/lcm_json.py): every type's JSON form and JSON Schema, for
+# the tools that show messages to people (viewer/, logger/'s MCAP export and spy). An
+# INTERFACE target of its own, so that only they depend on nlohmann::json.
+function(minenav_lcm_json)
+  cmake_parse_arguments(ARG "" "TARGET;TYPES" "FILES" ${ARGN})
+  set(out_dir "${CMAKE_CURRENT_BINARY_DIR}/lcmtypes_json")
+  set(header "${out_dir}/minenav/message_json.hpp")
+  set(abs_files)
+  foreach(lcm_file IN LISTS ARG_FILES)
+    get_filename_component(abs "${lcm_file}" ABSOLUTE)
+    list(APPEND abs_files "${abs}")
+  endforeach()
+  add_custom_command(
+    OUTPUT "${header}"
+    COMMAND Python3::Interpreter "${CMAKE_SOURCE_DIR}/cmake/lcm_json.py" "${header}" ${abs_files}
+    DEPENDS ${abs_files} "${CMAKE_SOURCE_DIR}/cmake/lcm_json.py" "${CMAKE_SOURCE_DIR}/cmake/lcm_wire_check.py"
+    COMMENT "lcm_json.py: minenav/message_json.hpp"
+    VERBATIM)
+  file(WRITE "${CMAKE_BINARY_DIR}/no_lcm/minenav/message_json.hpp"
+    "#error \"LCM message type in an algorithm library: convert in the node (common/node/conversions.h).\"\n")
+  add_custom_target(${ARG_TARGET}_gen DEPENDS "${header}")
+  add_library(${ARG_TARGET} INTERFACE)
+  add_dependencies(${ARG_TARGET} ${ARG_TARGET}_gen)
+  target_include_directories(${ARG_TARGET} SYSTEM INTERFACE "${out_dir}")
+  target_link_libraries(${ARG_TARGET} INTERFACE ${ARG_TYPES} nlohmann_json::nlohmann_json)
+endfunction()

@@ -13,6 +13,7 @@
 #include "logger/log_render.h"
 #include "logger/log_summary.h"
 #include "logger/message_catalog.h"
+#include "minenav/message_json.hpp"
 #include "logger/run_log.h"
 #include "logger/strict_log_reader.h"
 #include "logger/test_logs.h"
@@ -44,6 +45,27 @@ TEST(MessageCatalog, ChannelsMapToTheirTypes) {
   EXPECT_EQ(ExpectedTypeForChannel("CUT_TASK"), "minenav.cutter_command_t");
   EXPECT_EQ(ExpectedTypeForChannel("TASK_REQUEST"), "minenav.task_request_t");
   EXPECT_EQ(KnownMessageTypes().size(), 17u);  // every top-level type of lcmtypes/ but the nested ones
+}
+
+// Issue 17: every known type decodes to JSON whose fields are exactly its schema's properties.
+TEST(MessageCatalog, EveryTypeHasItsJsonFormAndSchema) {
+  int checked = 0;
+  ForEachMessageType([&]<typename T>() {
+    const KnownMessageType* type = FindKnownTypeByName(std::string("minenav.") + T::getTypeName());
+    if (type == nullptr) return;  // nested types (pose2d_t, contour_t, ...) travel inside others
+    const std::vector<uint8_t> bytes = EncodeMessage(T{});
+    nlohmann::json j;
+    std::string error;
+    ASSERT_TRUE(type->to_json(bytes.data(), bytes.size(), &j, &error)) << type->name << ": " << error;
+    const nlohmann::json schema = nlohmann::json::parse(type->json_schema);
+    EXPECT_EQ(schema["title"], type->name);
+    for (const auto& [key, value] : j.items()) EXPECT_TRUE(schema["properties"].contains(key)) << type->name << "." << key;
+    for (const auto& key : schema["required"]) EXPECT_TRUE(j.contains(key.get<std::string>())) << type->name << "." << key;
+    std::vector<uint8_t> cut(bytes.begin(), bytes.end() - 1);
+    EXPECT_FALSE(type->to_json(cut.data(), cut.size(), &j, &error)) << type->name << ": a truncated payload";
+    ++checked;
+  });
+  EXPECT_EQ(checked, static_cast<int>(KnownMessageTypes().size()));
 }
 
 TEST(MessageCatalog, ProbeTellsWrongTypeTruncationAndForeignApart) {

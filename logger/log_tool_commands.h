@@ -17,6 +17,8 @@ int RunRecordCommand(const std::vector<std::string>& args);
 int RunImportCarmenCommand(const std::vector<std::string>& args);  // import_carmen_command.cc
 int RunRelationsCommand(const std::vector<std::string>& args);     // relations_command.cc
 int RunMissionReportCommand(const std::vector<std::string>& args); // mission_report_command.cc
+int RunSpyCommand(const std::vector<std::string>& args);           // spy_command.cc
+int RunExportMcapCommand(const std::vector<std::string>& args);    // export_mcap_command.cc
 
 // Removes every occurrence of --name VALUE / --name=VALUE from args and returns the values
 // in order (for flags that may repeat, which ConfigSchema does not support).

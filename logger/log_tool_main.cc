@@ -1,6 +1,6 @@
 // log_tool: make, inspect, export and draw LCM logs of MINENAV runs (logger/README.md).
 //   log_tool survey | generate | info | export | render | record | import-carmen | relations |
-//            mission-report  [--help]
+//            mission-report | spy | export-mcap  [--help]
 
 #include <cstdio>
 #include <exception>
@@ -32,6 +32,8 @@ constexpr const char* kOverview =
     "  relations score robot poses against a relations file (Kuemmerle 2009, metricEvaluator)\n"
     "  mission-report  judge a finished mission (log, true world, final map, coordinator's report):\n"
     "            a report (Markdown), every figure (JSON), a picture (SVG, PNG)\n"
+    "  spy       a terminal spy of the bus (or of a log): rates, sizes, bad messages, decoded fields\n"
+    "  export-mcap  an LCM log as MCAP (JSON channels, Foxglove schemas) for Foxglove and Lichtblick\n"
     "\n"
     "Exit codes: 0 ok, 2 bad flags or input (one line on stderr, no output file written),\n"
     "3 failure while running.\n";
@@ -61,6 +63,8 @@ int main(int argc, char** argv) {
     if (sub == "import-carmen") return minenav::RunImportCarmenCommand(args);
     if (sub == "relations") return minenav::RunRelationsCommand(args);
     if (sub == "mission-report") return minenav::RunMissionReportCommand(args);
+    if (sub == "spy") return minenav::RunSpyCommand(args);
+    if (sub == "export-mcap") return minenav::RunExportMcapCommand(args);
     std::fprintf(stderr, "log_tool: error: unknown subcommand '%s' (see log_tool --help)\n", sub.c_str());
     return minenav::kExitUsage;
   } catch (const minenav::UsageError& e) {

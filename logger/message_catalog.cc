@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <cstdio>
 
+#include "common/node/conversions.h"
 #include "minenav/contour_map_t.hpp"
 #include "minenav/coordinator_command_t.hpp"
 #include "minenav/cutter_command_t.hpp"
@@ -20,6 +21,7 @@
 #include "minenav/task_request_t.hpp"
 #include "minenav/task_status_t.hpp"
 #include "minenav/vehicle_truth_t.hpp"
+#include "minenav/message_json.hpp"
 #include "minenav/wire_check.hpp"
 
 namespace minenav {
@@ -71,8 +73,18 @@ MessageProbe Probe(const uint8_t* data, size_t size) {
 }
 
 template <typename T>
+bool DecodeToJson(const uint8_t* data, size_t size, nlohmann::json* out, std::string* error) {
+  T msg{};
+  if (size > static_cast<size_t>(INT32_MAX) ||
+      !DecodeMessage(data, static_cast<int>(size), std::string(T::getTypeName()), &msg, error))
+    return false;
+  *out = ToJson(msg);
+  return true;
+}
+
+template <typename T>
 KnownMessageType Entry() {
-  return {QualifiedName<T>(), T::getHash(), &Probe<T>};
+  return {QualifiedName<T>(), T::getHash(), &Probe<T>, &DecodeToJson<T>, JsonSchemaText<T>()};
 }
 
 int64_t ReadFingerprint(const uint8_t* data) {

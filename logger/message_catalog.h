@@ -8,7 +8,10 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
+
+#include <nlohmann/json_fwd.hpp>
 
 namespace minenav {
 
@@ -27,6 +30,10 @@ struct KnownMessageType {
   std::string name;  // e.g. "minenav.ladar_scan_t"
   int64_t fingerprint = 0;
   std::function<MessageProbe(const uint8_t* data, size_t size)> probe;
+  // Every field as JSON (minenav/message_json.hpp, generated from the .lcm file): false and
+  // *error (one line) when the payload does not decode (wire check first).
+  std::function<bool(const uint8_t* data, size_t size, nlohmann::json* out, std::string* error)> to_json;
+  std::string_view json_schema;  // the JSON Schema of what to_json makes
 };
 
 // Every top-level minenav message type.
