@@ -116,6 +116,8 @@ void DeclareOptions(OptionScope s, CoordinatorOptions& o) {
            1, 100);
   s.AddInt("cut_attempts", &o.cut_attempts, "attempts of a cut (the remaining depth from the face reached)", 1, 10);
   s.AddInt("plan_attempts", &o.plan_attempts, "task planner requests for the advance before the mission fails", 1, 10);
+  s.AddDouble("retry_delay", &o.retry_delay, "s",
+              "between a failed attempt and the next (the world settles, the map catches up)", 0.0, 600.0);
   s.AddDouble("resend_period", &o.resend_period, "s", "between repeats of an unacknowledged command", 0.05, 60.0);
   s.AddDouble("answer_timeout", &o.answer_timeout, "s",
               "for a planner's answer or a process's acknowledgement before the step fails", 0.1, 3600.0);
@@ -315,7 +317,9 @@ void Coordinator::StartAction(int node, int64_t now) {
   if (parent >= 0 && tree_.node(parent).type == BtNodeType::kRetry &&
       bt_.attempts[static_cast<size_t>(parent)] > 0) {
     ++stats_.retries;
-    Event("retrying '" + n.name + "' (attempt " + std::to_string(bt_.attempts[static_cast<size_t>(parent)] + 1) + ")");
+    r.not_before = now + Us(options_.retry_delay);
+    Event("retrying '" + n.name + "' (attempt " + std::to_string(bt_.attempts[static_cast<size_t>(parent)] + 1) +
+          ") in " + std::to_string(static_cast<int>(std::lround(options_.retry_delay))) + " s");
   }
   if (spec.kind == ActionKind::kTask) {
     const Task& t = spec.task;
@@ -474,6 +478,10 @@ void Coordinator::CheckHealth(int64_t now) {
 
 void Coordinator::TickAction(Running& r, int64_t now) {
   waiting_for_.clear();
+  if (now < r.not_before) {
+    waiting_for_ = "the retry's delay";
+    return;
+  }
   switch (r.kind) {
     case ActionKind::kWaitFleet: TickWaitFleet(r, now); break;
     case ActionKind::kExplore: TickExplore(r, now); break;

@@ -357,7 +357,7 @@ TEST(CoordinatorTest, AFailedDriveIsPlannedAnewFromWhereTheVehicleIs) {
     if (std::llround(r.goal.x) == 35 && std::abs(r.goal.y - 1.6) < 1e-9) ids.push_back(r.request_id);
   ASSERT_EQ(ids.size(), 2u);
   EXPECT_NE(ids[0], ids[1]) << "a new request, not the old one again";
-  EXPECT_TRUE(f.Logged("retrying 'into position' (attempt 2)"));
+  EXPECT_TRUE(f.Logged("retrying 'into position' (attempt 2) in 3 s"));
 }
 
 TEST(CoordinatorTest, StationsThatCannotBeReachedEndTheExplorationWithTheReason) {
