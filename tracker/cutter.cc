@@ -203,6 +203,7 @@ void Cutter::Fail(const std::string& why) {
 void Cutter::Cancel(const std::string& why) {
   if (!active()) return;
   Fail(why);
+  status_.state = CutterStatus::State::kCanceled;
 }
 
 std::optional<CutterCommand> Cutter::Send(CutterCommand::Action action, double boom, int64_t now) {

@@ -88,6 +88,7 @@ PathTrackerNode::PathTrackerNode(NodeRuntime& runtime, PathTrackerNodeOptions op
                              [this](const pose_estimate_t& m) { Report(predictor_.AddEstimate(FromLcm(m))); });
   Subscribe<path_t>(bus, options_.path_channel, [this](const path_t& m) {
     const int64_t now = runtime_.NowUtime();
+    if (last_status_ && m.request_id == last_status_->task_id) return Repeated(m, now);
     PathMessage p;
     try {
       p = PathFromLcm(m, options_.tracker.turn_radius);
@@ -108,6 +109,7 @@ PathTrackerNode::PathTrackerNode(NodeRuntime& runtime, PathTrackerNodeOptions op
       PublishStatus(now, task_status_t::CANCELED, 0.0f, "replaced by the path of request " + std::to_string(p.request_id));
     request_id_ = p.request_id;
     path_utime_ = p.utime;
+    progress_ = 0.0f;
     const TrackState s = tracker_.SetPath(p.path);
     MINENAV_LOG(kInfo) << "path of request " << p.request_id << ": " << tracker_.message();
     if (s == TrackState::kActive) {
@@ -142,6 +144,25 @@ void PathTrackerNode::Report(const EstimateVerdict& v) {
   }
 }
 
+void PathTrackerNode::Repeated(const path_t& m, int64_t now) {
+  if (!m.feasible && request_id_ && *request_id_ == m.request_id) {
+    const std::string why = "canceled by the sender";
+    tracker_.Cancel(why);
+    MINENAV_LOG(kInfo) << "path " << m.request_id << ": " << why;
+    PublishStatus(now, task_status_t::CANCELED, progress_, why);
+    request_id_.reset();
+    stopped_because_.clear();
+    return;
+  }
+  // The same request again (the sender repeats until acknowledged): nothing changes; its
+  // latest status, stamped now, is the acknowledgement.
+  MINENAV_LOG(kDebug) << options_.path_channel << ": request " << m.request_id << " repeated: status re-published";
+  task_status_t s = *last_status_;
+  s.utime = now;
+  if (request_id_ && *request_id_ == s.task_id) s.progress = progress_;
+  Publish(runtime_.bus(), options_.status_channel, s);
+}
+
 void PathTrackerNode::PublishStatus(int64_t now, int8_t state, float progress, const std::string& message) {
   task_status_t m{};
   m.utime = now;
@@ -151,6 +172,7 @@ void PathTrackerNode::PublishStatus(int64_t now, int8_t state, float progress, c
   m.progress = progress;
   m.message = message;
   Publish(runtime_.bus(), options_.status_channel, m);
+  last_status_ = m;
 }
 
 std::string PathTrackerNode::Staleness(int64_t now) const {
@@ -198,6 +220,7 @@ void PathTrackerNode::Tick(int64_t now) {
       }
       const TrackStep step = tracker_.Update(*predictor_.Predict());
       command = step.command;
+      progress_ = static_cast<float>(step.progress);
       heartbeat = "path " + std::to_string(*request_id_) + ": " + step.message;
       if (step.finished_now) {
         const bool done = step.state == TrackState::kDone;

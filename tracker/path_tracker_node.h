@@ -6,6 +6,12 @@
 // abandoned or blocked, and when the watchdog stops or releases the vehicle, and HEARTBEAT.
 // It never reads SIM_TRUTH.
 //
+// Repeat-safe (a coordinator re-sends each path on DRIVE_PATH until acknowledged): a path_t
+// whose request_id is the active path's, or the last finished one's, changes nothing and is
+// answered by re-publishing that path's latest TASK_STATUS; the same with feasible = false
+// while that path is active cancels it (STOP, TASK_STATUS CANCELED "canceled by the sender").
+// A path of another request replaces the active one (CANCELED "replaced by ...").
+//
 // The pose it steers by is PosePredictor's: the latest trusted estimate composed with the
 // odometry since. Watchdog, checked every tick while a path is active:
 //   * no trusted estimate for pose_timeout s (by the estimates' scan stamps), or no odometry
@@ -22,6 +28,8 @@
 #include "common/config.h"
 #include "common/node/map_updates.h"
 #include "common/node/node_runtime.h"
+#include "minenav/path_t.hpp"
+#include "minenav/task_status_t.hpp"
 #include "planner/footprint.h"
 #include "tracker/path_tracker.h"
 #include "tracker/pose_predictor.h"
@@ -64,6 +72,8 @@ class PathTrackerNode {
   // Logs a verdict on an estimate; a jump also goes out on TASK_STATUS and HEARTBEAT.
   void Report(const EstimateVerdict& v);
   void PublishStatus(int64_t now, int8_t state, float progress, const std::string& message);
+  // A path_t of the active or last finished request: a cancel, or a repeat to acknowledge.
+  void Repeated(const path_t& m, int64_t now);
   // "" when pose and odometry are fresh, else why not.
   std::string Staleness(int64_t now) const;
 
@@ -74,6 +84,8 @@ class PathTrackerNode {
   PosePredictor predictor_;
   std::unique_ptr<MapUpdates> maps_;
   std::optional<int64_t> request_id_;  // the active path's
+  std::optional<task_status_t> last_status_;  // the latest of the active or last finished path
+  float progress_ = 0.0f;              // of the active path, at the last tick
   int64_t path_utime_ = 0;
   std::string stopped_because_;         // the watchdog's reason while it holds the vehicle
   std::string last_report_;             // the latest pose report (jumps) for the heartbeat

@@ -225,6 +225,102 @@ TEST(PathTrackerNodeTest, APoseJumpIsReportedNotObeyed) {
   EXPECT_DOUBLE_EQ(c.omega, 0.0);
 }
 
+// The coordinator re-sends each path until it is acknowledged (on DRIVE_PATH): a repeat of
+// the active request changes nothing and re-publishes its latest status; a repeat of a
+// finished one re-publishes its end (DONE) and never drives it again.
+TEST(PathTrackerNodeTest, ARepeatedPathIsAcknowledgedAndNotRestarted) {
+  PathTrackerNodeOptions o;
+  o.path_channel = "DRIVE_PATH";
+  Harness h(o);
+  // 2 m forward, then 1 m back: two runs.
+  PlannedPath p = Straight(0, 2);
+  p.pieces.push_back({Motion::kReverse, 1.0, 0.0, Pose2(1, 0, 0)});
+  h.Pose(Pose2(0, 0, 0), h.clock.NowUtime());
+  h.bus->InjectMessage("DRIVE_PATH", PathToLcm(p, 51, h.clock.NowUtime(), 0.076, "ok"));
+  h.Step(100'000);
+  h.Step(100'000);
+  h.Step(100'000, Pose2(2.0, 0, 0));  // the first run driven
+  h.Step(100'000, Pose2(2.0, 0, 0));
+  h.Step(100'000, Pose2(2.0, 0, 0));
+  ASSERT_EQ(h.node.tracker().run_index(), 1);
+  ASSERT_EQ(h.LastCommand().mode, drive_command_t::VELOCITY);
+  ASSERT_LT(h.LastCommand().v, 0.0) << "reversing the second run";
+  const task_status_t latest = h.Statuses().back();
+  const size_t statuses = h.Statuses().size();
+  h.bus->InjectMessage("DRIVE_PATH", PathToLcm(p, 51, h.clock.NowUtime(), 0.076, "ok"));  // the repeat
+  h.Step(100'000, Pose2(1.9, 0, 0));
+  ASSERT_EQ(h.Statuses().size(), statuses + 1);
+  const task_status_t ack = h.Statuses().back();
+  EXPECT_EQ(ack.task_id, 51);
+  EXPECT_EQ(ack.state, latest.state);
+  EXPECT_EQ(ack.message, latest.message);
+  EXPECT_GT(ack.progress, 0.5f) << "the progress of the path under way";
+  EXPECT_EQ(h.node.tracker().run_index(), 1) << "not restarted";
+  h.Step(100'000, Pose2(1.8, 0, 0));
+  EXPECT_LT(h.LastCommand().v, 0.0) << "still reversing";
+  // Done; the repeat after it re-publishes DONE and the miner stays put.
+  for (int k = 0; k < 5; ++k) h.Step(100'000, Pose2(1.0, 0, 0));
+  ASSERT_EQ(h.Statuses().back().state, task_status_t::DONE) << h.Statuses().back().message;
+  const task_status_t done = h.Statuses().back();
+  const size_t after_done = h.Statuses().size();
+  for (int k = 0; k < 3; ++k) {
+    h.bus->InjectMessage("DRIVE_PATH", PathToLcm(p, 51, h.clock.NowUtime(), 0.076, "ok"));
+    h.Step(100'000, Pose2(1.0, 0, 0));
+  }
+  ASSERT_EQ(h.Statuses().size(), after_done + 3);
+  for (size_t k = after_done; k < h.Statuses().size(); ++k) {
+    EXPECT_EQ(h.Statuses()[k].task_id, 51);
+    EXPECT_EQ(h.Statuses()[k].state, task_status_t::DONE);
+    EXPECT_EQ(h.Statuses()[k].message, done.message);
+  }
+  EXPECT_EQ(h.node.tracker().state(), TrackState::kDone);
+  EXPECT_EQ(h.LastCommand().mode, drive_command_t::STOP);
+}
+
+// feasible = false with the active request's id cancels it: STOP, CANCELED "canceled by the
+// sender"; its repeats (and a repeat of the path itself) only re-publish that; an infeasible
+// answer to another request does not touch the active path.
+TEST(PathTrackerNodeTest, AnInfeasiblePathOfTheActiveRequestCancelsIt) {
+  Harness h;
+  h.Pose(Pose2(0, 0, 0), h.clock.NowUtime());
+  h.Path(Straight(0, 20), 61);
+  h.Step(100'000);
+  h.Step(100'000);
+  ASSERT_EQ(h.LastCommand().mode, drive_command_t::VELOCITY);
+  h.bus->InjectMessage("PATH", NoPathToLcm(99, h.clock.NowUtime(), "no path"));  // another request's
+  h.Step(100'000);
+  h.Step(100'000);
+  EXPECT_EQ(h.LastCommand().mode, drive_command_t::VELOCITY);
+  EXPECT_EQ(h.Statuses().back().task_id, 61);
+  EXPECT_EQ(h.Statuses().back().state, task_status_t::ACTIVE);
+  h.bus->InjectMessage("PATH", NoPathToLcm(61, h.clock.NowUtime(), "cancel"));
+  h.Step(100'000);
+  h.Step(100'000);
+  EXPECT_EQ(h.LastCommand().mode, drive_command_t::STOP);
+  const task_status_t canceled = h.Statuses().back();
+  EXPECT_EQ(canceled.task_id, 61);
+  EXPECT_EQ(canceled.state, task_status_t::CANCELED);
+  EXPECT_EQ(canceled.message, "canceled by the sender");
+  const size_t n = h.Statuses().size();
+  h.bus->InjectMessage("PATH", NoPathToLcm(61, h.clock.NowUtime(), "cancel"));
+  h.Step(100'000);
+  h.Path(Straight(0, 20), 61);  // the path itself, late
+  h.Step(100'000);
+  h.Step(100'000);
+  ASSERT_EQ(h.Statuses().size(), n + 2);
+  for (size_t k = n; k < n + 2; ++k) {
+    EXPECT_EQ(h.Statuses()[k].state, task_status_t::CANCELED);
+    EXPECT_EQ(h.Statuses()[k].message, "canceled by the sender");
+  }
+  EXPECT_EQ(h.LastCommand().mode, drive_command_t::STOP);
+  // A new request drives again.
+  h.Path(Straight(0, 20), 62);
+  h.Step(100'000);
+  h.Step(100'000);
+  EXPECT_EQ(h.LastCommand().mode, drive_command_t::VELOCITY);
+  EXPECT_EQ(h.Statuses().back().task_id, 62);
+}
+
 TEST(PathMessageTest, AmountsComeBackFromThePoses) {
   // Every motion, arcs both ways in both directions and longer than a half turn.
   PlannedPath p;
