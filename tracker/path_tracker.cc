@@ -233,11 +233,13 @@ std::optional<TrackStep> PathTracker::CheckAhead(const Pose2& pose, const TrackS
     piece.end = PoseAfter(pose, piece.motion, piece.amount, piece.radius);
   if (!map_->PieceCollides(pose, piece)) return std::nullopt;
   if (step.command.mode == DriveCommand::Mode::kVelocity) {
-    // The commanded motion would touch a wall: the other motions of the same direction
-    // (straight, arc left, arc right; the nearest the pursuit curvature first) over the same
-    // distance, then all of them over half of it, a quarter, ... down to
-    // collision_min_distance, driven slower so that collision_time covers only the distance
-    // found free. The next tick corrects again.
+    // The commanded motion would touch a wall: the motions of the same direction (straight,
+    // arc left, arc right), the nearest the pursuit curvature first, each over the distance
+    // checked, then half of it, a quarter, ... down to the least (collision_min_distance, or
+    // the stopping distance), driven slower so that collision_time covers only the distance
+    // found free. The next tick corrects again. The pursuit's own motion, shortened and
+    // slower, comes before another motion at speed: near a wall the tracker keeps converging
+    // on the path (slowly) rather than keeping a lateral error it can never take out there.
     const int d = DriveDirection(piece.motion);
     const double speed = std::abs(step.command.v);
     const double commanded = speed > 0.0 ? step.command.omega / speed : 0.0;
@@ -248,8 +250,9 @@ std::optional<TrackStep> PathTracker::CheckAhead(const Pose2& pose, const TrackS
     const double full = piece.amount;
     // Never shorter than the vehicle needs to stop from the last commanded speed.
     const double least = std::max(options_.collision_min_distance, StoppingDistance() + kDriveOvershoot);
-    for (double distance = full;; distance = std::max(least, 0.5 * distance)) {
-      for (const double k : curvatures) {
+    for (const double k : curvatures) {
+      for (double distance = full, last = full + 1.0; distance < last;
+           last = distance, distance = std::max(least, 0.5 * distance)) {
         if (distance == full && k == commanded) continue;  // checked above
         MotionPiece other = piece;
         other.motion = MotionOf(d, k);
@@ -265,7 +268,6 @@ std::optional<TrackStep> PathTracker::CheckAhead(const Pose2& pose, const TrackS
         s.message = what + " would touch the map: " + ToString(other.motion) + " " + Fixed(distance) + " m instead";
         return s;
       }
-      if (distance <= least) break;
     }
   }
   return Finish(TrackState::kBlocked, "blocked: " + what + " from " + Fixed(pose.x) + ", " + Fixed(pose.y) +
