@@ -30,6 +30,18 @@ std::string Seconds(double s) {
 
 double Age(int64_t now, int64_t then) { return static_cast<double>(TimeGap(now, then)) * 1e-6; }
 
+bool SamePose(const pose2d_t& a, const pose2d_t& b) { return a.x == b.x && a.y == b.y && a.theta == b.theta; }
+
+// The same path (start and pieces, exactly as sent), whatever its stamp and status: a repeat.
+bool SamePath(const path_t& a, const path_t& b) {
+  if (a.feasible != b.feasible || a.num_segments != b.num_segments || !SamePose(a.start, b.start)) return false;
+  for (size_t k = 0; k < a.segments.size() && k < b.segments.size(); ++k) {
+    const path_segment_t &x = a.segments[k], &y = b.segments[k];
+    if (x.motion != y.motion || !SamePose(x.end, y.end) || x.radius != y.radius || x.speed != y.speed) return false;
+  }
+  return a.segments.size() == b.segments.size();
+}
+
 }  // namespace
 
 void DeclareOptions(ConfigSchema& s, PathTrackerNodeOptions& o) {
@@ -88,7 +100,12 @@ PathTrackerNode::PathTrackerNode(NodeRuntime& runtime, PathTrackerNodeOptions op
                              [this](const pose_estimate_t& m) { Report(predictor_.AddEstimate(FromLcm(m))); });
   Subscribe<path_t>(bus, options_.path_channel, [this](const path_t& m) {
     const int64_t now = runtime_.NowUtime();
-    if (last_status_ && m.request_id == last_status_->task_id) return Repeated(m, now);
+    if (last_status_ && m.request_id == last_status_->task_id) {
+      // A repeat (or a cancel) of the active or last finished request; only a different path
+      // for the active request goes on: the planner's replan (same request_id, new path).
+      const bool active = request_id_ && *request_id_ == m.request_id;
+      if (!active || !m.feasible || (active_path_ && SamePath(m, *active_path_))) return Repeated(m, now);
+    }
     PathMessage p;
     try {
       p = PathFromLcm(m, options_.tracker.turn_radius);
@@ -107,13 +124,16 @@ PathTrackerNode::PathTrackerNode(NodeRuntime& runtime, PathTrackerNodeOptions op
     }
     if (request_id_ && *request_id_ != p.request_id)
       PublishStatus(now, task_status_t::CANCELED, 0.0f, "replaced by the path of request " + std::to_string(p.request_id));
+    const bool replanned = request_id_ && *request_id_ == p.request_id;
     request_id_ = p.request_id;
     path_utime_ = p.utime;
     progress_ = 0.0f;
+    active_path_ = m;
     const TrackState s = tracker_.SetPath(p.path);
-    MINENAV_LOG(kInfo) << "path of request " << p.request_id << ": " << tracker_.message();
+    MINENAV_LOG(kInfo) << (replanned ? "replanned path" : "path") << " of request " << p.request_id << ": "
+                       << tracker_.message();
     if (s == TrackState::kActive) {
-      PublishStatus(now, task_status_t::ACTIVE, 0.0f, tracker_.message());
+      PublishStatus(now, task_status_t::ACTIVE, 0.0f, (replanned ? "replanned path taken: " : "") + tracker_.message());
     } else {
       PublishStatus(now, task_status_t::FAILED, 0.0f, tracker_.message());
       request_id_.reset();

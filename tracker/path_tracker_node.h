@@ -7,10 +7,13 @@
 // It never reads SIM_TRUTH.
 //
 // Repeat-safe (a coordinator re-sends each path on DRIVE_PATH until acknowledged): a path_t
-// whose request_id is the active path's, or the last finished one's, changes nothing and is
-// answered by re-publishing that path's latest TASK_STATUS; the same with feasible = false
-// while that path is active cancels it (STOP, TASK_STATUS CANCELED "canceled by the sender").
-// A path of another request replaces the active one (CANCELED "replaced by ...").
+// whose request_id is the active path's with the same path (start and pieces; its stamp and
+// status may differ), or the last finished one's, changes nothing and is answered by
+// re-publishing that path's latest TASK_STATUS; feasible = false with the active request_id
+// cancels it (STOP, TASK_STATUS CANCELED "canceled by the sender"). A different path with the
+// active request_id is the planner's replan (path_planner publishes it with the same id): it
+// replaces the active path. A path of another request replaces the active one (CANCELED
+// "replaced by ...").
 //
 // The pose it steers by is PosePredictor's: the latest trusted estimate composed with the
 // odometry since. Watchdog, checked every tick while a path is active:
@@ -85,6 +88,7 @@ class PathTrackerNode {
   std::unique_ptr<MapUpdates> maps_;
   std::optional<int64_t> request_id_;  // the active path's
   std::optional<task_status_t> last_status_;  // the latest of the active or last finished path
+  std::optional<path_t> active_path_;          // the message of the active (or last) path
   float progress_ = 0.0f;              // of the active path, at the last tick
   int64_t path_utime_ = 0;
   std::string stopped_because_;         // the watchdog's reason while it holds the vehicle

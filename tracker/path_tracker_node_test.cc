@@ -277,6 +277,26 @@ TEST(PathTrackerNodeTest, ARepeatedPathIsAcknowledgedAndNotRestarted) {
   EXPECT_EQ(h.LastCommand().mode, drive_command_t::STOP);
 }
 
+// path_planner replans the active path when the map blocks it and publishes the new path with
+// the same request_id: a different path of the active request is taken (not a repeat).
+TEST(PathTrackerNodeTest, AReplannedPathOfTheActiveRequestReplacesIt) {
+  Harness h;
+  h.Pose(Pose2(0, 0, 0), h.clock.NowUtime());
+  h.Path(Straight(0, 20), 71);
+  h.Step(100'000);
+  h.Step(100'000, Pose2(1.0, 0, 0));
+  const size_t n = h.Statuses().size();
+  h.Path(Straight(1, 3), 71);  // the replan: from where the vehicle is, to another end
+  h.Step(100'000, Pose2(1.0, 0, 0));
+  ASSERT_EQ(h.Statuses().size(), n + 1);
+  EXPECT_EQ(h.Statuses().back().task_id, 71);
+  EXPECT_EQ(h.Statuses().back().state, task_status_t::ACTIVE);
+  EXPECT_EQ(h.Statuses().back().message.rfind("replanned path taken", 0), 0u) << h.Statuses().back().message;
+  for (int k = 0; k < 4; ++k) h.Step(100'000, Pose2(3.0, 0, 0));
+  EXPECT_EQ(h.Statuses().back().state, task_status_t::DONE) << "the replanned path's end: " << h.Statuses().back().message;
+  EXPECT_EQ(h.Statuses().back().task_id, 71);
+}
+
 // feasible = false with the active request's id cancels it: STOP, CANCELED "canceled by the
 // sender"; its repeats (and a repeat of the path itself) only re-publish that; an infeasible
 // answer to another request does not touch the active path.
