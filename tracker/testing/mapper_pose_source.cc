@@ -36,7 +36,7 @@ MapperPoseSource::Output MapperPoseSource::Scan(const StaticSegmentIndex& world,
   const double cpu0 = ThreadCpuSeconds();
   const mapper::ScanResult r = session_.AddScan(scan, odometry);
   Output out;
-  out.compute_seconds = options_.latency_scale * (ThreadCpuSeconds() - cpu0);
+  out.compute_seconds = options_.compute_time >= 0.0 ? options_.compute_time : ThreadCpuSeconds() - cpu0;
   out.estimate = MakePoseEstimate(r, utime, id, "clue", out.compute_seconds);
   out.outcome = r.outcome;
   out.map_changed = r.outcome == mapper::ScanOutcome::kInserted;

@@ -17,8 +17,9 @@
 //     map (after an insert) is what it publishes on CONTOUR_MAP;
 //   * its latency: the mapper is one worker taking the scans in order, each after the
 //     previous one is done, and a scan's computation takes the thread CPU time the session
-//     really spent on it (times latency_scale), plus transport_latency. So the estimate of a
-//     scan taken at t is out at max(t, worker free) + compute + transport.
+//     really spent on it (or, for a test that must not depend on the machine, a fixed
+//     `compute_time`), plus transport_latency. So the estimate of a scan taken at t is out at
+//     max(t, worker free) + compute + transport.
 
 #include <cstdint>
 #include <limits>
@@ -43,7 +44,7 @@ struct MapperPoseSourceOptions {
   LadarModel ladar = LadarModel::Typhoon();
   uint64_t seed = 1;                   // of the ladar's noise
   mapper::MappingSessionOptions session = LiveMappingPolicy();
-  double latency_scale = 1.0;          // times the measured CPU time of each scan
+  double compute_time = -1.0;          // s per scan; < 0: the thread CPU time the session took (measured)
   double transport_latency = 0.01;     // s, from the mapper's answer to the consumer
 };
 
@@ -58,7 +59,7 @@ class MapperPoseSource {
     PoseEstimate estimate;          // as published on POSE
     mapper::ScanOutcome outcome = mapper::ScanOutcome::kRefused;
     bool map_changed = false;       // inserted: a new CONTOUR_MAP goes out with the estimate
-    double compute_seconds = 0.0;   // CPU time of the session on this scan (scaled)
+    double compute_seconds = 0.0;   // the computation's time (measured, or the fixed compute_time)
     double ready_at = 0.0;          // s (the caller's clock) when the estimate is out
   };
   // A scan taken at `now_s` (s, the caller's clock; stamped `utime`) of `world` with the
