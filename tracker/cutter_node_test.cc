@@ -53,6 +53,14 @@ struct Harness {
     m.action = action;
     bus->InjectMessage("CUT_TASK", m);
   }
+  // The vehicle at `at` with its boom up, then the task `seq` (a 1 m cut into `face`).
+  void Submit(int64_t seq, const Pose2& at, const Segment& face) {
+    Pose(at);
+    State(2.4, false);
+    Tick();
+    Task(seq, 1.0, face);
+    Tick();
+  }
   ManualClock clock{kT0};
   FakeRuntime fake{clock, 1.0, "cutter"};
   FakeBus* bus = &fake.bus();
@@ -62,11 +70,7 @@ struct Harness {
 
 TEST(CutterNodeTest, ACutWithoutAFaceInReachFailsWithItsReasonAndNothingMoves) {
   Harness h;
-  h.Pose(Pose2(0, 0, 0));
-  h.State(2.4, false);
-  h.Tick();
-  h.Task(7, 1.0, Segment(16, -3, 16, 3));
-  h.Tick();
+  h.Submit(7, Pose2(0, 0, 0), Segment(16, -3, 16, 3));
   h.Tick();
   const auto status = h.bus->Decoded<task_status_t>("TASK_STATUS");
   ASSERT_EQ(status.size(), 1u);
@@ -130,11 +134,7 @@ TEST(CutterNodeTest, AnAcceptedCutRaisesTheBoomThenSquaresUp) {
 // the repeats of a canceled (or refused) cut re-publish how it ended and start nothing.
 TEST(CutterNodeTest, RepeatedTasksAreAcknowledgedNotRestarted) {
   Harness h;
-  h.Pose(Pose2(10, 0, 0.05));
-  h.State(2.4, false);
-  h.Tick();
-  h.Task(21, 1.0, Segment(16, -3, 16, 3));
-  h.Tick();
+  h.Submit(21, Pose2(10, 0, 0.05), Segment(16, -3, 16, 3));
   h.State(2.4, false);
   h.Pose(Pose2(10, 0, 0.05));
   for (int k = 0; k < 4; ++k) h.Tick();

@@ -53,6 +53,13 @@ struct Harness {
   void Path(const PlannedPath& p, int64_t request_id) {
     bus->InjectMessage("PATH", PathToLcm(p, request_id, clock.NowUtime(), 0.076, "ok"));
   }
+  // A pose at the origin and the path of request `id`, taken and driving after two ticks.
+  void Begin(const PlannedPath& p, int64_t id) {
+    Pose(Pose2(0, 0, 0), clock.NowUtime());
+    Path(p, id);
+    Step(100'000);
+    Step(100'000);
+  }
   std::vector<task_status_t> Statuses() const { return bus->Decoded<task_status_t>("TASK_STATUS"); }
   drive_command_t LastCommand() const { return bus->Decoded<drive_command_t>("DRIVE_COMMAND").back(); }
 
@@ -138,10 +145,7 @@ TEST(PathTrackerNodeTest, AStalePoseStopsTheMinerWithin200msAndSaysWhy) {
 
 TEST(PathTrackerNodeTest, StaleOdometryStopsTheMinerWithin200ms) {
   Harness h;  // odometry_timeout 0.5 s
-  h.Pose(Pose2(0, 0, 0), h.clock.NowUtime());
-  h.Path(Straight(0, 20), 8);
-  h.Step(100'000);
-  h.Step(100'000);
+  h.Begin(Straight(0, 20), 8);
   ASSERT_EQ(h.LastCommand().mode, drive_command_t::VELOCITY);
   const int64_t last_odometry = h.clock.NowUtime();
   h.Step(20'000);  // the last reading, stamped last_odometry
@@ -212,10 +216,7 @@ TEST(PathTrackerNodeTest, RefusesAPathThroughAWallOfTheMapAndAMalformedPath) {
 
 TEST(PathTrackerNodeTest, APoseJumpIsReportedNotObeyed) {
   Harness h;
-  h.Pose(Pose2(0, 0, 0), h.clock.NowUtime());
-  h.Path(Straight(0, 20), 12);
-  h.Step(100'000);
-  h.Step(100'000);
+  h.Begin(Straight(0, 20), 12);
   h.Pose(Pose2(0, 2.0, 0), h.clock.NowUtime() - 100'000);  // 2 m sideways
   h.Step(100'000);
   const task_status_t s = h.Statuses().back();
@@ -281,9 +282,7 @@ TEST(PathTrackerNodeTest, ARepeatedPathIsAcknowledgedAndNotRestarted) {
 // the same request_id: a different path of the active request is taken (not a repeat).
 TEST(PathTrackerNodeTest, AReplannedPathOfTheActiveRequestReplacesIt) {
   Harness h;
-  h.Pose(Pose2(0, 0, 0), h.clock.NowUtime());
-  h.Path(Straight(0, 20), 71);
-  h.Step(100'000);
+  h.Begin(Straight(0, 20), 71);
   h.Step(100'000, Pose2(1.0, 0, 0));
   const size_t n = h.Statuses().size();
   h.Path(Straight(1, 3), 71);  // the replan: from where the vehicle is, to another end
@@ -302,10 +301,7 @@ TEST(PathTrackerNodeTest, AReplannedPathOfTheActiveRequestReplacesIt) {
 // answer to another request does not touch the active path.
 TEST(PathTrackerNodeTest, AnInfeasiblePathOfTheActiveRequestCancelsIt) {
   Harness h;
-  h.Pose(Pose2(0, 0, 0), h.clock.NowUtime());
-  h.Path(Straight(0, 20), 61);
-  h.Step(100'000);
-  h.Step(100'000);
+  h.Begin(Straight(0, 20), 61);
   ASSERT_EQ(h.LastCommand().mode, drive_command_t::VELOCITY);
   h.bus->InjectMessage("PATH", NoPathToLcm(99, h.clock.NowUtime(), "no path"));  // another request's
   h.Step(100'000);
