@@ -155,9 +155,9 @@ PathTracker::PathTracker(PathTrackerOptions options, Footprint footprint)
 
 void PathTracker::SetMap(std::shared_ptr<const TrackerMap> map) { map_ = std::move(map); }
 
-TrackState PathTracker::SetPath(const PlannedPath& path) {
+TrackState PathTracker::SetPath(const PlannedPath& path, const std::vector<double>& speed_limits) {
   path_ = path;
-  runs_ = SplitIntoRuns(path, options_.sample_step);
+  runs_ = SplitIntoRuns(path, options_.sample_step, speed_limits);
   run_ = 0;
   hint_ = 0;
   correcting_ = aligning_goal_ = false;
@@ -405,6 +405,9 @@ TrackStep PathTracker::Drive(const Pose2& pose) {
   } else {
     s.motion = QuantiseCurvature(k, options_.straight_deadband, options_.turn_in_place_curvature);
     double speed = options_.cruise_speed;
+    // The path's own speed limits, over what the vehicle reaches before it could stop.
+    const double ahead = std::max(lookahead, StoppingDistance() + options_.cruise_speed * options_.command_timeout);
+    if (const double limit = SpeedLimitAhead(run, p.index, ahead); limit > 0.0) speed = std::min(speed, limit);
     const double curvature = s.motion == QuantisedMotion::kArcLeft    ? 1.0 / options_.turn_radius
                              : s.motion == QuantisedMotion::kArcRight ? -1.0 / options_.turn_radius
                                                                       : 0.0;

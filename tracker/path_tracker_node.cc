@@ -129,7 +129,7 @@ PathTrackerNode::PathTrackerNode(NodeRuntime& runtime, PathTrackerNodeOptions op
     path_utime_ = p.utime;
     progress_ = 0.0f;
     active_path_ = m;
-    const TrackState s = tracker_.SetPath(p.path);
+    const TrackState s = tracker_.SetPath(p.path, p.speeds);
     MINENAV_LOG(kInfo) << (replanned ? "replanned path" : "path") << " of request " << p.request_id << ": "
                        << tracker_.message();
     if (s == TrackState::kActive) {

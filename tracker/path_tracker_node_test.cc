@@ -353,11 +353,16 @@ TEST(PathMessageTest, AmountsComeBackFromThePoses) {
   }
   const PathMessage back = PathFromLcm(PathToLcm(p, 5, kT0, 0.076, "ok"), 4.0);
   EXPECT_EQ(back.request_id, 5);
+  EXPECT_EQ(back.speeds, std::vector<double>(p.pieces.size(), 0.076));
   ASSERT_EQ(back.path.pieces.size(), p.pieces.size());
   for (size_t k = 0; k < p.pieces.size(); ++k) {
     EXPECT_EQ(back.path.pieces[k].motion, p.pieces[k].motion) << k;
     EXPECT_NEAR(back.path.pieces[k].amount, p.pieces[k].amount, 1e-5) << k;
   }
+  // A speed that is not a speed: refused, named.
+  path_t fast = PathToLcm(p, 6, kT0, 0.076, "ok");
+  fast.segments[2].speed = -1.0;
+  EXPECT_THROW(PathFromLcm(fast, 4.0), InputError);
   // A piece that cannot reach its end: refused, named.
   path_t bad = PathToLcm(p, 6, kT0, 0.076, "ok");
   bad.segments[1].end.y += 0.5;

@@ -169,6 +169,28 @@ TEST(PathTrackerTest, NearAWallItKeepsConvergingOnThePathSlowerRatherThanGoingSt
                                                PoseAfter(left_of_path, Motion::kArcRight, 1.5, 4.0)}));
 }
 
+TEST(PathTrackerTest, HonoursThePathsSpeedLimitsFromBeforeTheyStart) {
+  // 2 m at no limit, then 2 m limited to 0.03 m/s (path_t's segment speed), one run.
+  PlannedPath p;
+  p.start = Pose2(0, 0, 0);
+  p.pieces.push_back({Motion::kForward, 2.0, 0.0, Pose2(2, 0, 0)});
+  p.pieces.push_back({Motion::kForward, 2.0, 0.0, Pose2(4, 0, 0)});
+  for (const bool regulated : {true, false}) {
+    PathTrackerOptions o;
+    o.regulated = regulated;
+    PathTracker tracker(o, Footprint::Rectangle(3.3, 10.0));
+    ASSERT_EQ(tracker.SetPath(p, {0.0, 0.03}), TrackState::kActive);
+    EXPECT_DOUBLE_EQ(tracker.Update(Pose2(0.5, 0, 0)).command.v, 0.076) << "cruise before the limit";
+    // The lookahead (0.6 m) reaches the limited piece: slower before it starts.
+    EXPECT_DOUBLE_EQ(tracker.Update(Pose2(1.6, 0, 0)).command.v, 0.03);
+    EXPECT_DOUBLE_EQ(tracker.Update(Pose2(2.5, 0, 0)).command.v, 0.03);
+  }
+  // Without limits, cruise all along.
+  PathTracker free({}, Footprint::Rectangle(3.3, 10.0));
+  ASSERT_EQ(free.SetPath(p), TrackState::kActive);
+  for (double x : {0.5, 1.5, 2.5}) EXPECT_DOUBLE_EQ(free.Update(Pose2(x, 0, 0)).command.v, 0.076) << x;
+}
+
 TEST(PathTrackerTest, AtACuspItTurnsToTheNextRunsHeadingBeforeDrivingIt) {
   // 1 m forward, then 2 m reversed on a right arc at the miner's radius (no turn in place
   // planned at the cusp). The vehicle reaches the cusp 3 deg short of the heading: it stops,
