@@ -139,19 +139,37 @@ PathTrackerNode::PathTrackerNode(NodeRuntime& runtime, PathTrackerNodeOptions op
       request_id_.reset();
     }
   });
+  map_worker_ = std::make_unique<BackgroundWorker<MapJob, BuiltMap>>(1, [this](MapJob& job) {
+    BuiltMap b;
+    b.map = std::make_shared<TrackerMap>(job.segments, footprint_, options_.tracker.collision_margin,
+                                         options_.tracker.turn_radius);
+    b.what = std::move(job.what);
+    b.segments = job.segments.size();
+    return b;
+  });
   maps_ = std::make_unique<MapUpdates>(
       bus, options_.line_map_channel, options_.map_channel,
       [this](const std::vector<Segment>& segments, const std::string& what) {
-        auto map = std::make_shared<TrackerMap>(segments, footprint_, options_.tracker.collision_margin,
-                                                options_.tracker.turn_radius);
-        if (!map->error().empty()) {
-          MINENAV_LOG(kWarn) << what << ": not used (" << map->error() << ")";
-          return;
-        }
-        MINENAV_LOG(kInfo) << what << ": " << segments.size() << " segments to check the motion against";
-        tracker_.SetMap(std::move(map));
+        if (const std::optional<MapJob> dropped = map_worker_->Push({segments, what}))
+          MINENAV_LOG(kDebug) << dropped->what << ": replaced by a newer map before it was built";
       });
   runtime_.AddTimer(1.0 / options_.rate, [this](int64_t now) { Tick(now); });
+}
+
+PathTrackerNode::~PathTrackerNode() { map_worker_->Stop(); }
+
+void PathTrackerNode::TakeMaps() {
+  std::vector<BuiltMap> built = map_worker_->TakeOutbox();
+  for (auto it = built.rbegin(); it != built.rend(); ++it) {  // the newest usable one
+    if (!it->map->error().empty()) {
+      MINENAV_LOG(kWarn) << it->what << ": not used (" << it->map->error() << ")";
+      continue;
+    }
+    MINENAV_LOG(kInfo) << it->what << ": " << it->segments << " segments to check the motion against";
+    tracker_.SetMap(std::move(it->map));
+    ++maps_applied_;
+    return;
+  }
 }
 
 void PathTrackerNode::Report(const EstimateVerdict& v) {
@@ -210,6 +228,7 @@ std::string PathTrackerNode::Staleness(int64_t now) const {
 }
 
 void PathTrackerNode::Tick(int64_t now) {
+  TakeMaps();
   DriveCommand command;
   command.timeout = options_.tracker.command_timeout;
   std::string heartbeat;

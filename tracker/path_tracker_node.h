@@ -22,6 +22,10 @@
 //     the same line; the path resumes when both are fresh again ("resumed");
 //   * the path older than path_max_age s (its utime): abandoned, TASK_STATUS FAILED.
 // The tick runs at --rate (10 Hz: at most 100 ms after a limit passes, the STOP is out).
+// A new map (CONTOUR_MAP, or the line map) is turned into the tracker's collision map
+// (TrackerMap: the planner's checker and a segment index) on a BackgroundWorker, so the
+// control tick never waits for a large map; the tick takes the newest one built (a map that
+// arrives while another is built replaces the one waiting).
 
 #include <cstdint>
 #include <memory>
@@ -29,6 +33,7 @@
 #include <string>
 
 #include "common/config.h"
+#include "common/node/background_worker.h"
 #include "common/node/map_updates.h"
 #include "common/node/node_runtime.h"
 #include "minenav/path_t.hpp"
@@ -66,12 +71,17 @@ class PathTrackerNode {
  public:
   // Subscribes and adds the control timer (call after runtime.Start()).
   PathTrackerNode(NodeRuntime& runtime, PathTrackerNodeOptions options, Footprint footprint);
+  ~PathTrackerNode();
   int Run() { return runtime_.Run(); }
 
   const PathTracker& tracker() const { return tracker_; }
+  // Maps built on the worker and taken by the control tick so far.
+  int64_t maps_applied() const { return maps_applied_; }
 
  private:
   void Tick(int64_t now);
+  // The newest collision map the worker built, if any, into the tracker.
+  void TakeMaps();
   // Logs a verdict on an estimate; a jump also goes out on TASK_STATUS and HEARTBEAT.
   void Report(const EstimateVerdict& v);
   void PublishStatus(int64_t now, int8_t state, float progress, const std::string& message);
@@ -94,6 +104,19 @@ class PathTrackerNode {
   std::string stopped_because_;         // the watchdog's reason while it holds the vehicle
   std::string last_report_;             // the latest pose report (jumps) for the heartbeat
   int64_t seq_ = 0;
+  int64_t maps_applied_ = 0;
+  struct MapJob {
+    std::vector<Segment> segments;
+    std::string what;
+  };
+  struct BuiltMap {
+    std::shared_ptr<TrackerMap> map;
+    std::string what;
+    size_t segments = 0;
+  };
+  // Builds collision maps off the node thread (reads options_ and footprint_ only, which do
+  // not change). Last: stopped and destroyed first.
+  std::unique_ptr<BackgroundWorker<MapJob, BuiltMap>> map_worker_;
 };
 
 }  // namespace minenav

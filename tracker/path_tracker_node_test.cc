@@ -7,6 +7,9 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
+#include <thread>
+
 #include "common/config_testing.h"
 #include "common/file_io.h"
 #include "common/node/contour_map_conversions.h"
@@ -52,6 +55,14 @@ struct Harness {
   }
   void Path(const PlannedPath& p, int64_t request_id) {
     bus->InjectMessage("PATH", PathToLcm(p, request_id, clock.NowUtime(), 0.076, "ok"));
+  }
+  // Ticks (real time passing for the map worker) until `n` maps were taken.
+  void WaitForMaps(int64_t n) {
+    for (int k = 0; k < 10000 && node.maps_applied() < n; ++k) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+      Step(100'000, Pose2(), false);
+    }
+    ASSERT_GE(node.maps_applied(), n) << "no map built";
   }
   // A pose at the origin and the path of request `id`, taken and driving after two ticks.
   void Begin(const PlannedPath& p, int64_t id) {
@@ -193,6 +204,7 @@ TEST(PathTrackerNodeTest, RefusesAPathThroughAWallOfTheMapAndAMalformedPath) {
   map.contours.push_back({1, true, {{-8, -4}, {40, -4}, {40, 4}, {-8, 4}}});
   map.contours.push_back({2, false, {{12, -4}, {12, 4}}});  // across the way
   h.bus->InjectMessage("CONTOUR_MAP", ContourMapToLcm(map));
+  h.WaitForMaps(1);  // built on the worker, taken by a tick
   h.Pose(Pose2(0, 0, 0), h.clock.NowUtime());
   h.Step(100'000);
   h.Path(Straight(0, 20), 10);
