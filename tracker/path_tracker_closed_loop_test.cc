@@ -66,7 +66,10 @@ INSTANTIATE_TEST_SUITE_P(Maneuvers, ClosedLoopTest,
 // (insert every metre or 0.3 rad, track the others) after a short survey along the path,
 // each estimate out when its computation is done (a fixed 0.5 s per scan here, so that the
 // run does not depend on the machine; tracker_bench measures it); the tracker's map is the
-// mapper's. A few maneuvers at the miner's cruise (tracker_bench runs the whole grid).
+// mapper's. Two maneuvers at the miner's cruise, the box cut and the slab cut (reversals and
+// turns in place beside the walls), kept few because the mapper's time dominates (the turn at
+// the crossing took 9 s of CPU in release and over 2 min under the sanitizers); tracker_bench
+// runs the whole grid.
 class ClosedLoopLiveMapperTest : public ::testing::TestWithParam<std::tuple<std::string, double>> {};
 
 TEST_P(ClosedLoopLiveMapperTest, TracksWithinTheTargetsOnTheMappersPose) {
@@ -94,8 +97,7 @@ TEST_P(ClosedLoopLiveMapperTest, TracksWithinTheTargetsOnTheMappersPose) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Maneuvers, ClosedLoopLiveMapperTest,
-                         ::testing::Values(std::make_tuple("box_cut", 1.0), std::make_tuple("slab_cut", 0.5),
-                                           std::make_tuple("intersection_turn", 0.2)),
+                         ::testing::Values(std::make_tuple("box_cut", 1.0), std::make_tuple("slab_cut", 0.2)),
                          [](const auto& param_info) {
                            return std::get<0>(param_info.param) + "_" +
                                   std::to_string(static_cast<int>(std::get<1>(param_info.param) * 10)) + "dHz";
