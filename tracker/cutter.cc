@@ -162,10 +162,14 @@ std::string Cutter::Start(const CutTask& task, const std::optional<StampedPose>&
   if ((face_.a - p.translation()).dot(normal_) < 0.0) normal_ = -normal_;
   face_offset_ = face_.a.dot(normal_);
   heading_ = std::atan2(normal_.y(), normal_.x());
-  const SegmentProjection foot = ProjectOntoSegment(p.translation(), face_);
   const double off = std::abs(NormalizeAngle(heading_ - p.theta));
   const double gap = face_offset_ - (p.translation().dot(normal_) + options_.reach);
-  if (foot.region != SegmentRegion::kInterior)
+  // The face must lie ahead of the drum, across part of its width at least: a whole face
+  // (a box cut) or the part of one left beside a cut (a slab cut, thesis 6.2.1), measured
+  // across the face's normal from the vehicle's centre.
+  const Eigen::Vector2d across(-normal_.y(), normal_.x());
+  const double a = (face_.a - p.translation()).dot(across), b = (face_.b - p.translation()).dot(across);
+  if (std::min(std::max(a, b), options_.width / 2.0) <= std::max(std::min(a, b), -options_.width / 2.0))
     return refuse("refused: no face in reach: the face line does not lie ahead of the vehicle");
   if (gap > options_.max_face_distance)
     return refuse("refused: no face in reach: the face is " + CutterNumber(gap) + " m ahead of the cutterhead (reach " +
@@ -203,6 +207,7 @@ void Cutter::Fail(const std::string& why) {
 void Cutter::Cancel(const std::string& why) {
   if (!active()) return;
   Fail(why);
+  status_.state = CutterStatus::State::kCanceled;
 }
 
 std::optional<CutterCommand> Cutter::Send(CutterCommand::Action action, double boom, int64_t now) {

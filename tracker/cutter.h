@@ -82,7 +82,7 @@ struct CutTask {
 std::optional<Segment> FindFace(const std::vector<Segment>& map, const Pose2& pose, const CutterOptions& o);
 
 struct CutterStatus {
-  enum class State { kIdle = 0, kActive = 1, kDone = 2, kFailed = 3 };
+  enum class State { kIdle = 0, kActive = 1, kDone = 2, kFailed = 3, kCanceled = 4 };
   State state = State::kIdle;
   int64_t task_id = 0;
   std::string step = "idle";   // the cycle's step
@@ -101,7 +101,7 @@ class Cutter {
   // one-line refusal (also the status's message; the status is then kFailed).
   std::string Start(const CutTask& task, const std::optional<StampedPose>& pose, const std::vector<Segment>& map,
                     int64_t now);
-  // Ends an active cut (tracks stop, drum off) with `why`.
+  // Ends an active cut (tracks stop, drum off) with `why`: state canceled.
   void Cancel(const std::string& why);
 
   void AddOdometry(const OdometryReading& reading);
