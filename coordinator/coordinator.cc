@@ -128,8 +128,10 @@ void DeclareOptions(OptionScope s, CoordinatorOptions& o) {
   s.AddBool("preplan", &o.preplan, "plan the next subtask's path while the current one executes");
   s.AddDouble("preplan_tolerance", &o.preplan_tolerance, "m",
               "a path planned ahead is used when the vehicle is this close to its start (heading: this / 3 m)", 0.0, 5.0);
-  s.AddDouble("cusp_distance", &o.cusp_distance, "m",
-              "a cut ends this far behind its deepest point (the cutter's cusp_distance; for planning ahead)", 0.0, 5.0);
+  s.AddDouble("cut_end_offset", &o.cut_end_offset, "m",
+              "a cut leaves the vehicle this far behind where it started (the cutter backs out to its withdraw_gap, "
+              "it starts at its standoff: their difference; for planning ahead)",
+              -5.0, 5.0);
   s.AddBool("auto_start", &o.auto_start, "start the mission without an operator START");
   s.AddDouble("max_pose_age", &o.max_pose_age, "s", "an older pose estimate is not used as a path's start", 0.1, 3600.0);
 }
@@ -794,10 +796,9 @@ void Coordinator::RequestPreplan(const Task& current, int64_t now) {
   Preplan p;
   p.task_id = next->id;
   p.request_id = NextId();
-  // Where the current subtask leaves the vehicle: a drive at its target; a cut deeper by its
-  // depth, less the cusp it backs out of at the end.
-  p.start = IsCutTask(current.kind) ? Ahead(current.target, std::max(0.0, current.depth - options_.cusp_distance))
-                                    : current.target;
+  // Where the current subtask leaves the vehicle: a drive at its target; a cut backed out of,
+  // `cut_end_offset` behind where it started.
+  p.start = IsCutTask(current.kind) ? Ahead(current.target, -options_.cut_end_offset) : current.target;
   p.last_sent = 0;
   preplan_ = p;
   Log("planning subtask " + std::to_string(next->id) + " ahead from " + Where(p.start));

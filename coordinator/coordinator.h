@@ -74,7 +74,7 @@ struct CoordinatorOptions {
   double recovery_timeout = 60.0;  // s a lost process has to come back before the mission fails
   bool preplan = true;             // plan subtask n+1 while n executes
   double preplan_tolerance = 0.3;  // m (and that over 3 m in rad): a pre-planned path is used this close to its start
-  double cusp_distance = 0.3;      // m a cut ends behind its deepest point (the cutter's cusp_distance)
+  double cut_end_offset = 0.4;     // m a cut ends behind its start (cutter withdraw_gap - standoff)
   bool auto_start = false;         // start without an operator START
   double max_pose_age = 30.0;      // s: an older pose estimate is not a path's start
 };

@@ -221,6 +221,10 @@ TEST(CutterSimTest, ABoxCutThenASlabCutBesideItEachEndWithinFiveCentimetresInThe
   const double box_coal = sim.head->State(sim.now).coal_removed;
   EXPECT_NEAR(box_coal, 3.3 * depth, 3.3 * 0.05);
   EXPECT_FALSE(sim.head->State(sim.now).drum_on);
+  // The miner backed out of the cut: its drum's front withdraw_gap before the old face line
+  // (truly; the cutter steered on the mapper's estimate), its body clear of the cut's ribs.
+  const double withdraw = sim.cutter.options().withdraw_gap;
+  EXPECT_NEAR(sim.vehicle->pose().x + sim.cutter.options().reach, kFaceX - withdraw, 0.05);
 
   // The slab. The part of the face left on the right, as the live map shows it.
   const double rib_in_map = SideY(map, 0.0);              // the box cut's right rib
@@ -260,6 +264,8 @@ TEST(CutterSimTest, ABoxCutThenASlabCutBesideItEachEndWithinFiveCentimetresInThe
   std::printf("coal: box cut %.3f m^2, slab cut %.3f m^2 (the strip: %.3f m^2)\n", box_coal, slab_coal, strip);
   EXPECT_NEAR(slab_coal, strip, 0.05 * strip);
   EXPECT_FALSE(sim.head->State(sim.now).drum_on);
+  EXPECT_NEAR(sim.vehicle->pose().x + sim.cutter.options().reach, face_in_map - withdraw, 0.05)
+      << "backed out of the slab cut";
 }
 
 TEST(CutterSimTest, AFaceThatDoesNotAdvanceStopsTheCutWithTheReason) {
