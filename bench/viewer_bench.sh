@@ -33,8 +33,7 @@ port=8799
 bridge_pid=""
 cleanup() { [ -n "$bridge_pid" ] && kill "$bridge_pid" 2>/dev/null; wait 2>/dev/null || true; rm -rf "$work"; }
 trap cleanup EXIT
-"$build/bin/viewer_bridge" --port $port --net-namespace "/proc/$pid/ns/net" --display.vehicle-width 1.2 \
-  --display.vehicle-length 2 2> "$work/bridge.log" &
+"$build/bin/viewer_bridge" --port $port --net-namespace "/proc/$pid/ns/net" 2> "$work/bridge.log" &
 bridge_pid=$!
 sleep 1
 nsenter --net="/proc/$pid/ns/net" "$build/bin/log_tool" spy --json --duration $((duration + 3)) > "$work/bus.json" &

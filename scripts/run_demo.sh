@@ -2,6 +2,7 @@
 # The main job: the whole mission on the fleet's built-in simulated mine, live on the LCM bus.
 #
 #   scripts/run_demo.sh [--seed S] [--fast F] [--depth D] [--out DIR] [--small] [--max-stations N]
+#                       [--two-hosts] [--kill NAME@SECONDS]... [--port P] [--bin DIR]
 #
 # Generates a room-and-pillar section (thesis 5.2.1; 7 m entries: the 3.3 x 10 m miner's turn
 # into a crosscut needs more than 6 m, planner/README.md) and runs the mission's fleet
@@ -30,9 +31,19 @@
 # the cutter's sumping and shearing) so the mission takes minutes; the report states it.
 # --small: a one-pillar section and a 0.5 m cut (what CI runs). Watch it live in a browser:
 # viewer/view_demo.sh (in another terminal, while it runs).
+#
+# --two-hosts: the fleet split as on a real machine: the `vehicle` group (vehicle_sim,
+# ladar_driver, contour_mapper, path_tracker, cutter) in one network namespace, the `base`
+# group (lcm-logger, path_planner, task_planner, coordinator) in another, joined only by a veth
+# pair with ttl=1 (tests/bus/two_hosts.sh); each under its own supervisor; the vehicle's stops
+# when the base's mission has ended. fleet_vehicle.log and fleet_base.log hold their tables.
+# --kill NAME@SECONDS (repeatable): a fault: kill -9 the process NAME that many seconds into the
+# mission; its supervisor restarts it (fleet/README.md) and the mission goes on or stops with
+# the reason. --port: the bus's UDP port (default 7667). --bin DIR: use the programs in DIR as
+# they are (built elsewhere, e.g. by the tests) instead of building build/release.
 source "$(dirname "$0")/common.sh"
 
-seed=7 fast=6 depth=1.0 out="" small=0 max_stations=30
+seed=7 fast=6 depth=1.0 out="" small=0 max_stations=30 two_hosts=0 port=7667 bin="" kills=()
 while [ $# -gt 0 ]; do
   case "$1" in
     --seed) seed="$2"; shift 2 ;;
@@ -41,6 +52,10 @@ while [ $# -gt 0 ]; do
     --out) out="$2"; shift 2 ;;
     --small) small=1; shift ;;
     --max-stations) max_stations="$2"; shift 2 ;;
+    --two-hosts) two_hosts=1; shift ;;
+    --kill) kills+=("$2"); shift 2 ;;
+    --port) port="$2"; shift 2 ;;
+    --bin) bin="$2"; shift 2 ;;
     -h|--help) awk 'NR > 1 && /^#/ { print; next } NR > 1 { exit }' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "run_demo.sh: unknown option '$1' (see --help)" >&2; exit 2 ;;
   esac
@@ -53,13 +68,26 @@ number='^[0-9]+([.][0-9]+)?$'
   { echo "run_demo.sh: --depth must be a number of metres from 0.1 to 5" >&2; exit 2; }
 [[ "$max_stations" =~ ^[0-9]+$ && "$max_stations" -ge 1 ]] ||
   { echo "run_demo.sh: --max-stations must be a whole number >= 1" >&2; exit 2; }
+[[ "$port" =~ ^[0-9]+$ && "$port" -ge 1024 && "$port" -le 65535 ]] ||
+  { echo "run_demo.sh: --port must be a UDP port from 1024 to 65535" >&2; exit 2; }
+processes=(vehicle_sim ladar_driver contour_mapper path_planner path_tracker cutter task_planner coordinator)
+for k in "${kills[@]}"; do
+  [[ "$k" =~ ^([a-z_]+)@([0-9]+([.][0-9]+)?)$ ]] && [[ " ${processes[*]} " == *" ${BASH_REMATCH[1]} "* ]] ||
+    { echo "run_demo.sh: --kill takes NAME@SECONDS with NAME one of: ${processes[*]} (got '$k')" >&2; exit 2; }
+done
 
-minenav_install_deps
-build="$MINENAV_ROOT/build/release"
-echo "== building in $build"
-minenav_build "$build" -DMINENAV_WERROR=ON -- vehicle_sim ladar_driver contour_mapper path_planner path_tracker \
-  cutter task_planner coordinator log_tool fleet
-bin="$build/bin"
+if [ -z "$bin" ]; then
+  minenav_install_deps
+  build="$MINENAV_ROOT/build/release"
+  echo "== building in $build"
+  minenav_build "$build" -DMINENAV_WERROR=ON -- "${processes[@]}" log_tool fleet
+  bin="$build/bin"
+else
+  for p in "${processes[@]}" log_tool fleet; do
+    [ -x "$bin/$p" ] || { echo "run_demo.sh: --bin $bin has no program $p" >&2; exit 2; }
+  done
+  bin="$(cd "$bin" && pwd)"
+fi
 
 out="${out:-$MINENAV_ROOT/out/mission-$(date -u +%Y%m%d-%H%M%S)}"
 mkdir -p "$out"
@@ -88,11 +116,54 @@ speeds=(TRAM_SPEED="$(times 0.076)" TURN_RATE="$(times 0.05)" ACCELERATION="$(ti
 echo "== the mission: explore the ${cols}x${rows}-pillar section from $start_pose, then advance the face at $face by $depth m"
 echo "   speed factor $fast: tramming $(times 0.076) m/s (the miner's 0.076 x $fast); progress below, Ctrl-C stops"
 
+# One host's supervisor, as a script of its own (run inside the namespace): supervise.sh
+# GROUPS LOG [ENDED]. The fleet's GROUPS (all, vehicle or base), its tables in LOG, the faults
+# of --kill among its processes (kill -9 of its child NAME, the time given after the start).
+# With ENDED, the base touches that file when its fleet has ended and the vehicle stops its
+# own then (nothing on the vehicle knows the mission). Ctrl-C reaches the supervisor.
+supervise="$out/.supervise.sh"
+{
+  echo '#!/usr/bin/env bash'
+  echo 'groups="$1" log="$2" ended="${3:-}" args=()'
+  echo '[ "$groups" != all ] && args=(--groups "$groups")'
+  printf '%q ' "$bin/fleet" run "$MINENAV_ROOT/fleet/mission.fleet" --out "$out" --status-period 60 \
+    SEED="$seed" START_POSE="$start_pose" FACE="$face" DEPTH="$depth" MAX_STATIONS="$max_stations" "${speeds[@]}"
+  echo '"${args[@]}" > >(tee "$log") &'
+  echo 'f=$!'
+  echo "trap 'kill -INT \$f 2>/dev/null' INT TERM"
+  for k in "${kills[@]}"; do
+    name="${k%@*}" at="${k#*@}"
+    group="$(awk -v p="[process $name]" '$0 == p { on = 1; next } /^\[/ { on = 0 } on && $1 == "group" { print $3 }' \
+             "$MINENAV_ROOT/fleet/mission.fleet")"
+    echo "if [ \"\$groups\" = all ] || [ \"\$groups\" = $group ]; then"
+    echo "  (sleep $at; pkill -9 -P \$f -x $name && echo \"== fault: kill -9 $name, $at s into the mission\") &"
+    echo "fi"
+  done
+  echo 'if [ -n "$ended" ] && [ "$groups" = vehicle ]; then'
+  echo '  while kill -0 $f 2>/dev/null && [ ! -e "$ended" ]; do sleep 0.5; done'
+  echo '  kill -INT $f 2>/dev/null'
+  echo 'fi'
+  echo 'wait $f; s=$?'
+  echo 'while kill -0 $f 2>/dev/null; do wait $f; s=$?; done'
+  echo 'kill $(jobs -p) 2>/dev/null'
+  echo '[ -n "$ended" ] && [ "$groups" = base ] && touch "$ended"'
+  echo '[ "$groups" = vehicle ] && exit 0'
+  echo 'exit $s'
+} > "$supervise"
+chmod +x "$supervise"
+
 status=0
-"$MINENAV_ROOT/tests/bus/private_net.sh" --port 7667 -- \
-  "$bin/fleet" run "$MINENAV_ROOT/fleet/mission.fleet" --out "$out" --status-period 60 \
-  SEED="$seed" START_POSE="$start_pose" FACE="$face" DEPTH="$depth" MAX_STATIONS="$max_stations" \
-  "${speeds[@]}" > >(tee "$out/fleet.log") || status=$?
+if [ $two_hosts -eq 0 ]; then
+  "$MINENAV_ROOT/tests/bus/private_net.sh" --port "$port" -- "$supervise" all "$out/fleet.log" || status=$?
+else
+  ended="$out/.base_ended"
+  rm -f "$ended"
+  "$MINENAV_ROOT/tests/bus/two_hosts.sh" --port "$port" --ttl 1 -- \
+    "$(printf '%q ' "$supervise" vehicle "$out/fleet_vehicle.log" "$ended")" -- \
+    "$(printf '%q ' "$supervise" base "$out/fleet_base.log" "$ended")" || status=$?
+  rm -f "$ended"
+fi
+rm -f "$supervise"
 case $status in
   0) echo "== the mission ended" ;;
   130) echo "== stopped by Ctrl-C: the report covers what was done" ;;

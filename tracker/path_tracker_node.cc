@@ -62,6 +62,10 @@ void DeclareOptions(ConfigSchema& s, PathTrackerNodeOptions& o) {
   s.AddDouble("odometry_timeout", &o.odometry_timeout, "s", "no odometry for this long: STOP until it comes", 0.05,
               60.0);
   s.AddDouble("path_max_age", &o.path_max_age, "s", "a path planned longer ago than this is abandoned", 1.0, 1e6);
+  s.AddDouble("idle_stop_time", &o.idle_stop_time, "s",
+              "without a path the tracker sends STOP this long (after a path ends, and at the start), then nothing: "
+              "DRIVE_COMMAND is the cutter's while it cuts",
+              0.0, 60.0);
   s.AddDouble("vehicle_width", &o.vehicle_width, "m", "the footprint rectangle's width (without --footprint)", 0.1,
               100.0);
   s.AddDouble("vehicle_length", &o.vehicle_length, "m", "the footprint rectangle's length (without --footprint)", 0.1,
@@ -233,7 +237,9 @@ void PathTrackerNode::Tick(int64_t now) {
   command.timeout = options_.tracker.command_timeout;
   std::string heartbeat;
   int8_t health = heartbeat_t::OK;
-  if (request_id_ && tracker_.state() == TrackState::kActive) {
+  const bool tracking = request_id_ && tracker_.state() == TrackState::kActive;
+  if (tracking) {
+    idle_since_.reset();
     if (path_utime_ < now && Age(now, path_utime_) > options_.path_max_age) {
       const std::string why = "path stale: planned " + Seconds(Age(now, path_utime_)) + " s ago (limit " +
                               Seconds(options_.path_max_age) + " s); abandoned";
@@ -281,10 +287,18 @@ void PathTrackerNode::Tick(int64_t now) {
   if (!last_report_.empty() && health == heartbeat_t::OK) {
     heartbeat += "; last report: " + last_report_;
   }
+  runtime_.SetStatus(health, heartbeat);
+  // Idle, the tracker's last word is a STOP repeated for idle_stop_time, then silence: the
+  // vehicle has one driver at a time (the cutter drives it through a cut on the same channel,
+  // and a STOP every tick from an idle tracker would halve its speed), and vehicle_sim's own
+  // command timeout stops it when nobody drives.
+  if (!request_id_ || tracker_.state() != TrackState::kActive) {
+    if (!idle_since_) idle_since_ = now;
+    if (Age(now, *idle_since_) > options_.idle_stop_time) return;
+  }
   command.utime = now;
   command.seq = seq_++;
   Publish(runtime_.bus(), options_.drive_channel, ToLcm(command));
-  runtime_.SetStatus(health, heartbeat);
 }
 
 }  // namespace minenav

@@ -56,6 +56,7 @@ struct PathTrackerNodeOptions {
   double pose_timeout = 12.0;      // s without a trusted estimate -> STOP
   double odometry_timeout = 0.5;   // s without odometry -> STOP
   double path_max_age = 600.0;     // s: an older path is abandoned
+  double idle_stop_time = 1.0;     // s of STOPs after a path ends (or at the start); then silent
   double vehicle_width = 3.3;      // m
   double vehicle_length = 10.0;    // m
   std::string footprint;           // JSON file {"footprint": [[x, y], ...]}; "" = the rectangle
@@ -104,6 +105,7 @@ class PathTrackerNode {
   std::string stopped_because_;         // the watchdog's reason while it holds the vehicle
   std::string last_report_;             // the latest pose report (jumps) for the heartbeat
   int64_t seq_ = 0;
+  std::optional<int64_t> idle_since_;  // when the tracker last became idle (no active path)
   int64_t maps_applied_ = 0;
   struct MapJob {
     std::vector<Segment> segments;

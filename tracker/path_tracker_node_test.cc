@@ -88,6 +88,32 @@ PlannedPath Straight(double from, double to) {
   return p;
 }
 
+// One driver at a time on DRIVE_COMMAND: idle, the tracker repeats its STOP for
+// idle_stop_time and then falls silent (the cutter drives the vehicle through a cut on the
+// same channel); a new path makes it the driver again.
+TEST(PathTrackerNodeTest, AnIdleTrackerStopsThenFallsSilent) {
+  Harness h;
+  auto count = [&] { return h.bus->Decoded<drive_command_t>("DRIVE_COMMAND").size(); };
+  for (int k = 0; k < 20; ++k) h.Step(100'000);
+  const size_t at_start = count();
+  EXPECT_GE(at_start, 9u) << "STOPs for the first second";
+  EXPECT_LE(at_start, 12u) << "then nothing";
+  h.Pose(Pose2(0, 0, 0), h.clock.NowUtime());
+  h.Path(Straight(0, 2), 7);
+  h.Step(100'000);
+  h.Step(100'000);
+  EXPECT_EQ(h.LastCommand().mode, drive_command_t::VELOCITY);
+  h.Step(100'000, Pose2(2.0, 0, 0));
+  h.Step(100'000, Pose2(2.0, 0, 0));
+  h.Step(100'000, Pose2(2.0, 0, 0));
+  ASSERT_EQ(h.Statuses().back().state, task_status_t::DONE);
+  const size_t at_done = count();
+  for (int k = 0; k < 30; ++k) h.Step(100'000, Pose2(2.0, 0, 0));
+  EXPECT_GE(count() - at_done, 8u) << "the last word: STOP for a second";
+  EXPECT_LE(count() - at_done, 12u) << "then silence for the cutter";
+  EXPECT_EQ(h.LastCommand().mode, drive_command_t::STOP);
+}
+
 TEST(PathTrackerNodeTest, DrivesAPathAndSaysDoneForItsRequest) {
   Harness h;
   h.Step(100'000);
@@ -389,8 +415,8 @@ TEST(PathMessageTest, AmountsComeBackFromThePoses) {
 TEST(PathTrackerNodeTest, EveryOptionIsReachable) {
   const auto keys = ExpectEveryOptionReachable<PathTrackerNodeOptions>(
       PathTrackerNodeOptions(), [](ConfigSchema& s, PathTrackerNodeOptions& o) { DeclareOptions(s, o); });
-  // 7 channels, rate, 3 limits, the footprint's 3, the tracker's 28, the prediction's 10.
-  EXPECT_EQ(keys.size(), 7u + 1u + 3u + 3u + 28u + 10u);
+  // 7 channels, rate, 4 limits (pose, odometry, path age, idle STOPs), the footprint's 3, the tracker's 28, the prediction's 10.
+  EXPECT_EQ(keys.size(), 7u + 1u + 4u + 3u + 28u + 10u);
   for (const std::string& k : keys) EXPECT_EQ(k.find("truth"), std::string::npos) << k;
   PathTrackerNodeOptions bad;
   bad.tracker.command_timeout = 0.05;

@@ -1,0 +1,78 @@
+#!/usr/bin/env bash
+# The whole mission in CI (issue 15), shortened: the README's main job (scripts/run_demo.sh)
+# on the one-pillar section with a 0.5 m advance, split across two hosts (vehicle and base
+# station, ttl=1) and with a fault: the path tracker is killed with SIGKILL while the
+# exploration drives. Then judged from what the run leaves, against the true world:
+#
+#   tests/bus/mission_test.sh BIN_DIR PORT [KILL...]
+#
+#   - the coordinator's mission ended DONE (exit 0 of the base's fleet);
+#   - the supervisor restarted each killed process (its table says restarts 1) and the mission
+#     went on;
+#   - the section explored: >= 90 % of the true free space seen free, nothing seen free that is
+#     not (< 1 m^2);
+#   - the pose estimate along the whole drive within 0.10 m RMS of the truth (the tracker drove
+#     on it, never on the truth);
+#   - every cut the plan asked for (box and slab) as deep as requested within the report's
+#     tolerance (5 cm), in the true world: none flagged;
+#   - the log replays: the report read every event of it without a bad message.
+set -euo pipefail
+bin="$1" port="$2"
+shift 2
+kills=("$@")
+[ ${#kills[@]} -gt 0 ] || kills=(path_tracker@40)
+here="$(cd "$(dirname "$0")" && pwd)"
+root="$(cd "$here/../.." && pwd)"
+work="$(mktemp -d)"
+trap 'rm -rf "$work"' EXIT
+fail() {
+  echo "mission_test: FAILED: $*" >&2
+  for f in coordinator path_tracker path_planner cutter; do
+    [ -f "$work/out/$f.log" ] && { echo "== tail of $f.log" >&2; tail -n 15 "$work/out/$f.log" >&2; }
+  done
+  exit 1
+}
+
+kill_args=()
+for k in "${kills[@]}"; do kill_args+=(--kill "$k"); done
+status=0
+"$root/scripts/run_demo.sh" --bin "$bin" --small --fast 6 --port "$port" --two-hosts "${kill_args[@]}" \
+  --out "$work/out" > "$work/run.txt" 2>&1 || status=$?
+grep -E "^\[(vehicle|base)\] \[ *[0-9]+:[0-9]+\]|== " "$work/run.txt" | tail -n 40
+[ $status -eq 0 ] || { tail -n 30 "$work/run.txt"; fail "run_demo.sh exited $status"; }
+report="$work/out/report.json"
+[ -s "$report" ] || fail "no report"
+cat "$work/out/report.md"
+
+for k in "${kills[@]}"; do
+  name="${k%@*}"
+  grep -q "== fault: kill -9 $name" "$work/run.txt" || fail "the fault was not made: $name was not killed"
+  # The supervisor's table: NAME GROUP STATE PID RESTARTS ...; the last table of the host.
+  restarts="$(grep -hE "^\[(vehicle|base)\] $name +(vehicle|base) " "$work/run.txt" | tail -n 1 | awk '{ print $6 }')"
+  [ "${restarts:-0}" -ge 1 ] || fail "$name was not restarted (restarts: '${restarts:-none}')"
+  echo "mission_test: $name killed and restarted ($restarts restart(s)); the mission went on"
+done
+
+python3 - "$report" <<'PY' || fail "the report's figures miss their targets (above)"
+import json, sys
+r = json.load(open(sys.argv[1]))
+bad = []
+def need(ok, what):
+    print(("ok      " if ok else "MISSED  ") + what)
+    if not ok: bad.append(what)
+m = r["mission"]
+need(m["state"] == "DONE", f"mission state {m['state']} ({m.get('message', '')})")
+e = r["explored_area"]
+need(e["explored_fraction"] >= 0.90, f"explored {100 * e['explored_fraction']:.1f} % of the true free space (>= 90 %)")
+need(e["falsely_free_m2"] < 1.0, f"seen free but not free: {e['falsely_free_m2']:.2f} m^2 (< 1 m^2)")
+p = r["pose_error"]["estimate"]
+need(p["rms_m"] <= 0.10, f"pose estimate RMS {p['rms_m']:.3f} m over {p['compared']} poses (<= 0.10 m)")
+kinds = sorted(c["kind"] for c in r["cuts"])
+need(kinds == ["box_cut", "slab_cut"], f"cuts {kinds} (a box cut and a slab cut)")
+for c in r["cuts"]:
+    need(not c["off_request"] and c["state"] == "success",
+         f"{c['kind']}: {c['truth']['median_m']:.3f} m of {c['requested_m']:.2f} m in the true world, {c['state']}")
+need(r["log"]["bad_messages"] == 0 and not r["log"]["damage"], f"log: {r['log']['events']} events, {r['log']['bad_messages']} bad")
+sys.exit(1 if bad else 0)
+PY
+echo "mission_test: passed"
