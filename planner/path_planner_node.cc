@@ -250,18 +250,22 @@ PathPlannerNode::Answer PathPlannerNode::Handle(Job& job) {
     cache.planners.clear();
   }
   const double clearance = r.clearance > 0.0 ? r.clearance : options_.default_clearance;
-  const std::tuple<double, bool, bool> key(clearance, r.allow_unknown, r.allow_reverse);
-  auto it = cache.planners.find(key);
-  if (it == cache.planners.end()) {
-    if (cache.planners.size() >= kMaxPlannersPerMap) cache.planners.clear();
-    Se2PlannerOptions po = options_.planner;
-    po.clearance = clearance;
-    if (!r.allow_reverse) po.costs.reverse_factor = std::max(po.costs.reverse_factor, kNoReverseFactor);
-    ++planners_built_;
-    it = cache.planners.emplace(key, std::make_unique<Se2Planner>(cache.space->Boundary(r.allow_unknown), footprint_, po))
-             .first;
-  }
-  const Se2Planner& planner = *it->second;
+  auto planner_with = [&](double c) -> const Se2Planner& {
+    const std::tuple<double, bool, bool> key(c, r.allow_unknown, r.allow_reverse);
+    auto it = cache.planners.find(key);
+    if (it == cache.planners.end()) {
+      if (cache.planners.size() >= kMaxPlannersPerMap) cache.planners.clear();
+      Se2PlannerOptions po = options_.planner;
+      po.clearance = c;
+      if (!r.allow_reverse) po.costs.reverse_factor = std::max(po.costs.reverse_factor, kNoReverseFactor);
+      ++planners_built_;
+      it = cache.planners
+               .emplace(key, std::make_unique<Se2Planner>(cache.space->Boundary(r.allow_unknown), footprint_, po))
+               .first;
+    }
+    return *it->second;
+  };
+  const Se2Planner* chosen = &planner_with(clearance);
   const std::string map_name = "map version " + std::to_string(job.map->version);
 
   Pose2 start = FromLcm(r.start);
@@ -286,7 +290,7 @@ PathPlannerNode::Answer PathPlannerNode::Handle(Job& job) {
     std::string blocked;
     from = first == 0 ? path.start : path.pieces[first - 1].end;
     for (size_t k = first; k < path.pieces.size() && blocked.empty(); ++k) {
-      if (planner.PieceCollides(from, path.pieces[k]))
+      if (chosen->PieceCollides(from, path.pieces[k]))
         blocked = map_name + " blocks piece " + std::to_string(k + 1) + " of " + std::to_string(path.pieces.size()) +
                   " (" + ToString(path.pieces[k].motion) + " to " + Where(path.pieces[k].end) + ")";
       from = path.pieces[k].end;
@@ -320,6 +324,23 @@ PathPlannerNode::Answer PathPlannerNode::Handle(Job& job) {
     MINENAV_LOG(kInfo) << "request " << r.request_id << ": " << prefix << why;
     return answer;
   };
+  // A vehicle that stands within the clearance of a wall (the map grew around it where it
+  // stopped short, or a cut's ribs beside it) is not stuck: it may leave with less, as much as
+  // it has (the clearance halved until the start is free, at least none: never in contact).
+  // The answer says so.
+  if (chosen->setup_error().empty() && !chosen->PoseFree(start)) {
+    for (double c = clearance / 2.0; c >= 0.0; c = c > 0.01 ? c / 2.0 : -1.0) {
+      const Se2Planner& relaxed = planner_with(c > 0.01 ? c : 0.0);
+      if (relaxed.PoseFree(start)) {
+        prefix += "start within " + Fixed(clearance) + " m of a wall: planned with a clearance of " +
+                  Fixed(c > 0.01 ? c : 0.0) + " m; ";
+        chosen = &relaxed;
+        break;
+      }
+      if (c <= 0.01) break;
+    }
+  }
+  const Se2Planner& planner = *chosen;
   if (!planner.setup_error().empty()) return refuse("invalid request: " + planner.setup_error());
   if (!r.allow_unknown) {
     if (!cache.known->Contains(goal.translation()))

@@ -12,6 +12,7 @@
 #include <thread>
 #include <vector>
 
+#include "common/angle.h"
 #include "common/node/contour_map_conversions.h"
 #include "common/node/conversions.h"
 #include "common/node/fake_runtime.h"
@@ -117,6 +118,31 @@ TEST(PathPlannerNode, AnswersARequestWithAPathTaggedWithItsId) {
   const auto report = Check(p, ContourMapSegments(ContourMapMessage{0, 1, 1, room}), 0.1);
   EXPECT_TRUE(report.ok) << report.problem;
   EXPECT_TRUE(h.node.has_active_path());
+}
+
+// A miner that stopped short 4 cm beside a pillar (the map grew around it) leaves with the
+// clearance it has: the answer says so, the path keeps that clearance everywhere (the
+// independent checker, never in contact) and reaches the goal. A start in contact stays refused.
+TEST(PathPlannerNode, AStartWithinTheClearanceLeavesWithTheClearanceItHas) {
+  Harness h;
+  const std::vector<ContourPolyline> map = {Room(), Box(8, 6, 20, 12)};
+  h.fake.bus().InjectMessage("CONTOUR_MAP", MapMessage(1, map, h.now()));
+  const double beside = 6.0 - 1.65 - 0.04;  // its left side 0.04 m below the pillar's south face
+  h.fake.bus().InjectMessage("PATH_REQUEST", Request(8, {14.0, beside, 0.0}, {33, 16, kPi / 2}, h.now()));
+  h.fake.bus().InjectMessage("PATH_REQUEST", Request(9, {14.0, beside + 0.06, 0.0}, {33, 16, kPi / 2}, h.now()));
+  const std::vector<path_t> paths = h.WaitForPaths(2);
+  ASSERT_EQ(paths.size(), 2u);
+  const path_t& p = paths[0].request_id == 8 ? paths[0] : paths[1];
+  const path_t& touching = paths[0].request_id == 8 ? paths[1] : paths[0];
+  ASSERT_TRUE(p.feasible) << p.status;
+  EXPECT_NE(p.status.find("start within 0.10 m of a wall: planned with a clearance of 0.01 m"), std::string::npos)
+      << p.status;
+  const auto report = Check(p, ContourMapSegments(ContourMapMessage{0, 1, 1, map}), 0.0125);
+  EXPECT_TRUE(report.ok) << report.problem;
+  EXPECT_NEAR(p.segments.back().end.x, 33.0, 0.1);
+  EXPECT_NEAR(p.segments.back().end.y, 16.0, 0.1);
+  EXPECT_FALSE(touching.feasible);
+  EXPECT_NE(touching.status.find("start"), std::string::npos) << touching.status;
 }
 
 TEST(PathPlannerNode, BadRequestsAreRefusedInOneLine) {

@@ -207,9 +207,13 @@ SurveyDecision PlanNextStation(const TaskMap& map_in, const Footprint& footprint
                                const SurveyPlannerOptions& o, const Se2PlannerOptions& planner_options,
                                const SearchLimits& limits) {
   SurveyDecision d;
+  d.path_clearance = r.clearance;
   auto finish = [&](PlanStatus status, const std::string& why) {
     d.plan.status = status;
     d.plan.reason = why;
+    if (d.path_clearance < r.clearance)
+      d.plan.reason += " (the vehicle stood within " + FixedNumber(r.clearance) +
+                       " m of a wall: its paths keep " + FixedNumber(d.path_clearance) + " m)";
     return d;
   };
   if (const std::string e = ValidateOptions(o); !e.empty()) return finish(PlanStatus::kFailed, "bad options: " + e);
@@ -231,7 +235,17 @@ SurveyDecision PlanNextStation(const TaskMap& map_in, const Footprint& footprint
   const KnownFreeSpace known(map.AsFreeSpace());
   Se2PlannerOptions po = planner_options;
   po.clearance = r.clearance;
-  const Se2Planner planner(map.Boundary(), footprint, po);
+  // A vehicle within the clearance of a wall (it stopped short where the map grew around it)
+  // leaves with the clearance it has: halved until its pose is free, at least none (as the
+  // path planner does with such a start); the reason says so.
+  std::optional<Se2Planner> chosen;
+  chosen.emplace(map.Boundary(), footprint, po);
+  while (chosen->setup_error().empty() && !chosen->PoseFree(r.vehicle) && po.clearance > 0.0) {
+    po.clearance = po.clearance / 2.0 > 0.01 ? po.clearance / 2.0 : 0.0;
+    chosen.emplace(map.Boundary(), footprint, po);
+  }
+  d.path_clearance = po.clearance;
+  const Se2Planner& planner = *chosen;
   if (!planner.setup_error().empty()) return finish(PlanStatus::kFailed, "path planner: " + planner.setup_error());
   // Stations keep station_margin more than the paths: room to turn there, and to stay free
   // when the next scans move the walls a few centimetres.
@@ -240,11 +254,10 @@ SurveyDecision PlanNextStation(const TaskMap& map_in, const Footprint& footprint
   const Se2Planner roomy(map.Boundary(), footprint, roomy_options);
   if (!planner.PoseFree(r.vehicle))
     return finish(PlanStatus::kFailed, "the vehicle at " + PoseText(r.vehicle) +
-                                           " is in collision with the map (clearance " + FixedNumber(r.clearance) +
-                                           " m)");
+                                           " is in collision with the map (it touches a wall)");
   std::vector<Pose2> visited = r.visited;
   visited.push_back(r.vehicle);  // it has scanned where it stands
-  const CentreDistances centre(map.Boundary(), InscribedRadius(footprint) + r.clearance, r.vehicle.translation(),
+  const CentreDistances centre(map.Boundary(), InscribedRadius(footprint) + po.clearance, r.vehicle.translation(),
                                planner_options.field_resolution);
 
   // The frontiers worth a station: long enough, not already looked at from close by.

@@ -147,6 +147,9 @@ struct SurveyDecision {
   int frontiers_at_vehicle = 0;  // frontiers through the vehicle's footprint (dropped)
   int plans = 0;                 // path plans made
   int64_t expansions = 0;        // their expansions
+  // m the paths from the vehicle keep: the request's clearance, less when the vehicle stood
+  // within it (halved until its pose was free, at least 0).
+  double path_clearance = 0.0;
 };
 
 SurveyDecision PlanNextStation(const TaskMap& map, const Footprint& footprint, const SurveyRequest& request,

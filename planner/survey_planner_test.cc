@@ -103,6 +103,40 @@ TEST(SurveyPlanner, OnAPartialMapTheStationIsReachableKnownFreeBeforeAFrontierAn
   std::printf("miner: %s\n", m.plan.reason.c_str());
 }
 
+// The miner stopped short turned towards the entry's rib, its front corner 4 cm from it (the
+// map grew around it): the next station is still planned, its path leaving with the clearance
+// the miner has (never in contact with the map), and the reason says so.
+TEST(SurveyPlanner, AVehicleWithinTheClearanceOfAWallLeavesWithTheClearanceItHas) {
+  SurveySimulation e(GenerateRoomAndPillarMine(SmallMine()), 15.0);
+  ASSERT_EQ(e.ScanAt({3.0, 3.0, 0.0}), "");
+  ASSERT_EQ(e.ScanAt({9.0, 3.0, 0.0}), "");
+  const TaskMap map = e.Map();
+  // The heading that puts the front right corner (5, -1.65) 4 cm above the rib in the map.
+  auto corner = [](double theta) {
+    return Pose2(9.0, 3.0, theta) * Eigen::Vector2d(5.0, -1.65);
+  };
+  auto above_rib = [&](double theta) {
+    const Eigen::Vector2d c = corner(theta);
+    const auto hit = CastRay(Eigen::Vector2d(c.x(), 3.0), -kPi / 2, map.walls, 10.0);
+    return hit ? c.y() - (3.0 - hit->range) : 1e9;
+  };
+  double lo = -1.2, hi = 0.0;
+  for (int k = 0; k < 60; ++k) (above_rib(0.5 * (lo + hi)) > 0.04 ? hi : lo) = 0.5 * (lo + hi);
+  ASSERT_NEAR(above_rib(lo), 0.04, 1e-3);
+  SurveyRequest request;
+  request.vehicle = Pose2(9.0, 3.0, lo);
+  request.clearance = 0.1;
+  request.visited = {Pose2(3.0, 3.0, 0.0)};
+  const SurveyDecision d = PlanNextStation(map, Footprint::Rectangle(3.3, 10.0), request, Options(15.0), {});
+  ASSERT_EQ(d.plan.status, PlanStatus::kOk) << d.plan.reason;
+  EXPECT_LT(d.path_clearance, 0.04);
+  EXPECT_NE(d.plan.reason.find("the vehicle stood within 0.10 m of a wall"), std::string::npos) << d.plan.reason;
+  const auto on_map = testing::CheckPath(map.walls, request.vehicle, planner_test::AsChecked(d.path),
+                                         planner_test::CheckSettings(Footprint::Rectangle(3.3, 10.0).vertices,
+                                                                     d.path_clearance, 0.02));
+  EXPECT_TRUE(on_map.ok) << on_map.problem;
+}
+
 TEST(SurveyPlanner, ASmallWorldScannedWholeIsComplete) {
   // A room of 24 x 14 m with a pillar in it, seen whole from two stations at opposite
   // corners of the pillar (from its side, level with it, its top and bottom are edge-on:
