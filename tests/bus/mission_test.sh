@@ -14,7 +14,7 @@
 #   - the pose estimate along the whole drive within 0.10 m RMS of the truth (the tracker drove
 #     on it, never on the truth);
 #   - every cut the plan asked for (box and slab) as deep as requested within the report's
-#     tolerance (5 cm), in the true world: none flagged;
+#     tolerance (5 cm), in the true world and in the live contour map: none flagged;
 #   - the log replays: the report read every event of it without a bad message.
 set -euo pipefail
 bin="$1" port="$2"
@@ -72,6 +72,7 @@ need(kinds == ["box_cut", "slab_cut"], f"cuts {kinds} (a box cut and a slab cut)
 for c in r["cuts"]:
     need(not c["off_request"] and c["state"] == "success",
          f"{c['kind']}: {c['truth']['median_m']:.3f} m of {c['requested_m']:.2f} m in the true world, {c['state']}")
+    need(not c["map_off"], f"{c['kind']}: {c['map']['median_m']:.3f} m in the live contour map (the ladar saw the cut)")
 need(r["log"]["bad_messages"] == 0 and not r["log"]["damage"], f"log: {r['log']['events']} events, {r['log']['bad_messages']} bad")
 sys.exit(1 if bad else 0)
 PY
