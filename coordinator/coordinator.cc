@@ -443,7 +443,19 @@ void Coordinator::CheckHealth(int64_t now) {
   // While the fleet is first awaited the wait leaf reports; afterwards a lost process halts.
   bool waiting_fleet = false;
   for (const auto& [node, r] : running_) waiting_fleet |= r.kind == ActionKind::kWaitFleet;
+  const std::vector<std::string> restarted = watch_.TakeRestarts();
   if (waiting_fleet) return;
+  // A required process restarted between two heartbeats (its supervisor is quicker than the
+  // heartbeat timeout) has forgotten its command (the tracker its path, the cutter its cut):
+  // the running steps are halted and start again, as after a loss and a recovery.
+  if (!restarted.empty() && lost_since_ < 0) {
+    ++stats_.pauses_for_lost_processes;
+    Event("restarted: " + Join(restarted, "; ") + ": the running steps start again");
+    BtStep step = Halt(tree_, bt_);
+    HaltActions(step.halt, now);
+    bt_ = std::move(step.state);
+    StepTree(now);
+  }
   const std::vector<std::string> not_ready = watch_.NotReady(now);
   if (!not_ready.empty()) {
     if (lost_since_ < 0) {

@@ -70,6 +70,7 @@ struct FakeFleet {
   size_t next_station = 0;
   double drive_time = 5.0, cut_time = 8.0;
   std::set<std::string> dead;                 // processes that send no heartbeat
+  std::map<std::string, int> pids;            // each process's pid in its heartbeats (default 100)
   int drop_path_requests = 0, drop_forwards = 0, drop_cut_tasks = 0;
   std::set<int64_t> fail_drives_of_goal_x;    // drives to these x fail once each
   std::set<int64_t> failed_once;
@@ -99,6 +100,7 @@ struct FakeFleet {
       HeartbeatSample hb;
       hb.process = p;
       hb.state = HeartbeatState::kOk;
+      hb.pid = pids.count(p) ? pids.at(p) : 100;
       c.OnHeartbeat(hb, now);
     }
   }
@@ -214,6 +216,14 @@ struct FakeFleet {
         ++it;
       }
     }
+  }
+
+  // The tracker killed and restarted by its supervisor between two heartbeats: a new pid,
+  // and the path it was driving forgotten (no status for it ever again).
+  void RestartTracker() {
+    pids["tracker"] = (pids.count("tracker") ? pids.at("tracker") : 100) + 1;
+    jobs.erase(std::remove_if(jobs.begin(), jobs.end(), [](const Job& j) { return !j.cut; }), jobs.end());
+    for (auto& [id, n] : forwards) n = 0;  // the new tracker has seen no path
   }
 
   // One tick of 100 ms: heartbeats, the pose, the coordinator, the fleet's answers.
@@ -401,6 +411,28 @@ TEST(CoordinatorTest, ALostProcessStopsTheVehicleAndTheMissionGoesOnWhenItIsBack
   EXPECT_EQ(c.state(), MissionState::kDone);
   EXPECT_EQ(c.stats().pauses_for_lost_processes, 1);
   EXPECT_EQ(c.stats().retries, 0) << "a halt is not a failed attempt";
+}
+
+// The supervisor restarts a killed tracker before its silence reaches the heartbeat timeout:
+// the coordinator knows it by the new pid, halts the drive and starts it again (a new path
+// from where the vehicle is); without that it would wait for the forgotten path forever.
+TEST(CoordinatorTest, ATrackerRestartedBetweenHeartbeatsGetsTheDriveAgain) {
+  CoordinatorOptions o = Options();
+  o.explore = false;
+  Coordinator c(o, 1000);
+  FakeFleet f(c);
+  f.drive_time = 20.0;
+  StartMission(c, f);
+  f.RunFor(5.0);
+  ASSERT_EQ(f.forwards.size(), 1u) << "the first drive is under way";
+  const int64_t first = f.forwards.begin()->first;
+  f.RestartTracker();
+  ASSERT_TRUE(f.RunUntilFinished(600));
+  EXPECT_EQ(c.state(), MissionState::kDone);
+  EXPECT_TRUE(f.Logged("restarted: tracker (pid 101, was 100)")) << "the log says why";
+  EXPECT_EQ(f.canceled_paths, std::vector<int64_t>{first});
+  EXPECT_EQ(c.stats().pauses_for_lost_processes, 1);
+  EXPECT_EQ(c.stats().retries, 0) << "a restart is not a failed attempt";
 }
 
 TEST(CoordinatorTest, AProcessThatDoesNotComeBackFailsTheMissionSafely) {

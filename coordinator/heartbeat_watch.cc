@@ -9,6 +9,20 @@ namespace minenav {
 HeartbeatWatch::HeartbeatWatch(std::vector<std::string> required, double timeout_s)
     : required_(std::move(required)), timeout_us_(std::llround(timeout_s * 1e6)) {}
 
+void HeartbeatWatch::OnHeartbeat(const HeartbeatSample& sample) {
+  const HeartbeatRecord* before = monitor_.Find(sample.process, sample.instance);
+  if (before && before->last.pid != sample.pid) {
+    const std::string whole = sample.instance.empty() ? sample.process : sample.process + "/" + sample.instance;
+    for (const std::string& p : required_)
+      if (p == sample.process || p == whole) {
+        restarts_.push_back(whole + " (pid " + std::to_string(sample.pid) + ", was " +
+                            std::to_string(before->last.pid) + ")");
+        break;
+      }
+  }
+  monitor_.Add(sample);
+}
+
 const HeartbeatRecord* HeartbeatWatch::Latest(const std::string& process) const {
   const size_t slash = process.find('/');
   if (slash != std::string::npos) return monitor_.Find(process.substr(0, slash), process.substr(slash + 1));

@@ -8,6 +8,7 @@
 
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "common/heartbeat_monitor.h"
@@ -19,8 +20,12 @@ class HeartbeatWatch {
   // required: process names ("path_tracker": any instance), or "name/instance" for one copy.
   HeartbeatWatch(std::vector<std::string> required, double timeout_s);
 
-  // A heartbeat with its receive time (sample.received, us on this clock).
-  void OnHeartbeat(const HeartbeatSample& sample) { monitor_.Add(sample); }
+  // A heartbeat with its receive time (sample.received, us on this clock). A required
+  // process heard from a new pid has been restarted (by its supervisor, before its silence
+  // could reach the timeout): it knows nothing of what it was doing.
+  void OnHeartbeat(const HeartbeatSample& sample);
+  // The restarts of required processes since the last call: "path_tracker (pid 812, was 640)".
+  std::vector<std::string> TakeRestarts() { return std::exchange(restarts_, {}); }
 
   bool Ready(const std::string& process, int64_t now) const { return Why(process, now).empty(); }
   bool AllReady(int64_t now) const { return NotReady(now).empty(); }
@@ -38,6 +43,7 @@ class HeartbeatWatch {
   std::vector<std::string> required_;
   int64_t timeout_us_;
   HeartbeatMonitor monitor_;
+  std::vector<std::string> restarts_;
 };
 
 }  // namespace minenav

@@ -35,6 +35,29 @@ TEST(HeartbeatWatchTest, ReadyMeansOkOrWarnAndRecent) {
             (std::vector<std::string>{"mapper: no heartbeat for 3.2 s", "tracker: no heartbeat for 3.2 s"}));
 }
 
+// A required process heard from a new pid was restarted (however short its silence); other
+// processes' restarts and the same pid again are none; each restart is taken once.
+TEST(HeartbeatWatchTest, ARequiredProcessFromANewPidWasRestarted) {
+  HeartbeatWatch w({"tracker", "mapper/live"}, 3.0);
+  auto beat = [&](const std::string& process, int pid, int64_t t, const std::string& instance = "") {
+    HeartbeatSample hb = Beat(process, HeartbeatState::kOk, t, instance);
+    hb.pid = pid;
+    w.OnHeartbeat(hb);
+  };
+  beat("tracker", 640, 1'000'000);
+  beat("mapper", 700, 1'000'000, "live");
+  beat("viewer", 900, 1'000'000);
+  beat("tracker", 640, 2'000'000);
+  EXPECT_TRUE(w.TakeRestarts().empty()) << "the same pid again";
+  beat("tracker", 812, 2'300'000);
+  beat("viewer", 901, 2'300'000);
+  beat("mapper", 701, 2'400'000, "live");
+  EXPECT_EQ(w.TakeRestarts(),
+            (std::vector<std::string>{"tracker (pid 812, was 640)", "mapper/live (pid 701, was 700)"}));
+  EXPECT_TRUE(w.TakeRestarts().empty()) << "taken once";
+  EXPECT_TRUE(w.AllReady(2'500'000)) << "restarted and heard: ready";
+}
+
 TEST(HeartbeatWatchTest, ErrorAndStoppingAreNotReadyAndInstancesAreTheirOwn) {
   HeartbeatWatch w({"ladar_driver/front", "planner"}, 3.0);
   w.OnHeartbeat(Beat("ladar_driver", HeartbeatState::kOk, 0, "rear"));
