@@ -111,5 +111,7 @@ endif()
 if(NOT MINENAV_SANITIZE)
   add_test(NAME bus.mission_two_hosts_with_a_fault
     COMMAND "${CMAKE_CURRENT_SOURCE_DIR}/bus/mission_test.sh" "${CMAKE_BINARY_DIR}/bin" 7898 path_tracker@40)
-  set_tests_properties(bus.mission_two_hosts_with_a_fault PROPERTIES TIMEOUT 1200 LABELS "bus;mission")
+  # Alone on the machine: the fleet runs in real time at 10 Hz scans, and a test beside it on
+  # the 2 cores delays the mapper's estimates by seconds.
+  set_tests_properties(bus.mission_two_hosts_with_a_fault PROPERTIES TIMEOUT 1200 LABELS "bus;mission" RUN_SERIAL TRUE)
 endif()
