@@ -116,6 +116,8 @@ void DeclareOptions(OptionScope s, CoordinatorOptions& o) {
            1, 100);
   s.AddInt("cut_attempts", &o.cut_attempts, "attempts of a cut (the remaining depth from the face reached)", 1, 10);
   s.AddInt("plan_attempts", &o.plan_attempts, "task planner requests for the advance before the mission fails", 1, 10);
+  s.AddDouble("retry_delay", &o.retry_delay, "s",
+              "between a failed attempt and the next (the world settles, the map catches up)", 0.0, 600.0);
   s.AddDouble("resend_period", &o.resend_period, "s", "between repeats of an unacknowledged command", 0.05, 60.0);
   s.AddDouble("answer_timeout", &o.answer_timeout, "s",
               "for a planner's answer or a process's acknowledgement before the step fails", 0.1, 3600.0);
@@ -126,8 +128,10 @@ void DeclareOptions(OptionScope s, CoordinatorOptions& o) {
   s.AddBool("preplan", &o.preplan, "plan the next subtask's path while the current one executes");
   s.AddDouble("preplan_tolerance", &o.preplan_tolerance, "m",
               "a path planned ahead is used when the vehicle is this close to its start (heading: this / 3 m)", 0.0, 5.0);
-  s.AddDouble("cusp_distance", &o.cusp_distance, "m",
-              "a cut ends this far behind its deepest point (the cutter's cusp_distance; for planning ahead)", 0.0, 5.0);
+  s.AddDouble("cut_end_offset", &o.cut_end_offset, "m",
+              "a cut leaves the vehicle this far behind where it started (the cutter backs out to its withdraw_gap, "
+              "it starts at its standoff: their difference; for planning ahead)",
+              -5.0, 5.0);
   s.AddBool("auto_start", &o.auto_start, "start the mission without an operator START");
   s.AddDouble("max_pose_age", &o.max_pose_age, "s", "an older pose estimate is not used as a path's start", 0.1, 3600.0);
 }
@@ -315,7 +319,9 @@ void Coordinator::StartAction(int node, int64_t now) {
   if (parent >= 0 && tree_.node(parent).type == BtNodeType::kRetry &&
       bt_.attempts[static_cast<size_t>(parent)] > 0) {
     ++stats_.retries;
-    Event("retrying '" + n.name + "' (attempt " + std::to_string(bt_.attempts[static_cast<size_t>(parent)] + 1) + ")");
+    r.not_before = now + Us(options_.retry_delay);
+    Event("retrying '" + n.name + "' (attempt " + std::to_string(bt_.attempts[static_cast<size_t>(parent)] + 1) +
+          ") in " + std::to_string(static_cast<int>(std::lround(options_.retry_delay))) + " s");
   }
   if (spec.kind == ActionKind::kTask) {
     const Task& t = spec.task;
@@ -474,6 +480,10 @@ void Coordinator::CheckHealth(int64_t now) {
 
 void Coordinator::TickAction(Running& r, int64_t now) {
   waiting_for_.clear();
+  if (now < r.not_before) {
+    waiting_for_ = "the retry's delay";
+    return;
+  }
   switch (r.kind) {
     case ActionKind::kWaitFleet: TickWaitFleet(r, now); break;
     case ActionKind::kExplore: TickExplore(r, now); break;
@@ -786,10 +796,9 @@ void Coordinator::RequestPreplan(const Task& current, int64_t now) {
   Preplan p;
   p.task_id = next->id;
   p.request_id = NextId();
-  // Where the current subtask leaves the vehicle: a drive at its target; a cut deeper by its
-  // depth, less the cusp it backs out of at the end.
-  p.start = IsCutTask(current.kind) ? Ahead(current.target, std::max(0.0, current.depth - options_.cusp_distance))
-                                    : current.target;
+  // Where the current subtask leaves the vehicle: a drive at its target; a cut backed out of,
+  // `cut_end_offset` behind where it started.
+  p.start = IsCutTask(current.kind) ? Ahead(current.target, -options_.cut_end_offset) : current.target;
   p.last_sent = 0;
   preplan_ = p;
   Log("planning subtask " + std::to_string(next->id) + " ahead from " + Where(p.start));

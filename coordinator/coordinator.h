@@ -66,6 +66,7 @@ struct CoordinatorOptions {
   int drive_attempts = 3;          // a drive is planned anew from where the vehicle is, at most this often
   int cut_attempts = 1;            // a cut that fails is not repeated blindly
   int plan_attempts = 2;           // task planner requests (advance) before the mission fails
+  double retry_delay = 3.0;        // s between a failed attempt and the next (the world settles, the map catches up)
   double resend_period = 2.0;      // s between repeats of an unacknowledged command
   double answer_timeout = 30.0;    // s for a planner's answer or a process's acknowledgement
   double ready_timeout = 60.0;     // s for the fleet to be ready after start
@@ -73,7 +74,7 @@ struct CoordinatorOptions {
   double recovery_timeout = 60.0;  // s a lost process has to come back before the mission fails
   bool preplan = true;             // plan subtask n+1 while n executes
   double preplan_tolerance = 0.3;  // m (and that over 3 m in rad): a pre-planned path is used this close to its start
-  double cusp_distance = 0.3;      // m a cut ends behind its deepest point (the cutter's cusp_distance)
+  double cut_end_offset = 0.4;     // m a cut ends behind its start (cutter withdraw_gap - standoff)
   bool auto_start = false;         // start without an operator START
   double max_pose_age = 30.0;      // s: an older pose estimate is not a path's start
 };
@@ -217,6 +218,7 @@ class Coordinator {
     int node = -1;
     ActionKind kind = ActionKind::kTask;
     int64_t started = 0;
+    int64_t not_before = 0;  // a retry waits until then
     // explore / plan advance: the task planner's request
     int64_t request_id = -1;
     int64_t last_sent = 0, since = 0;

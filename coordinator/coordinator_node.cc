@@ -1,6 +1,7 @@
 #include "coordinator/coordinator_node.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <cmath>
 #include <limits>
 #include <nlohmann/json.hpp>
@@ -113,6 +114,7 @@ void DeclareOptions(ConfigSchema& s, CoordinatorNodeOptions& o) {
               "CUTTER_STATE's boom at least this high counts as raised (the cutter's boom_top 2.4)", 0.0, 10.0);
   s.AddBool("exit_when_done", &o.exit_when_done, "stop the process when the mission has ended (done, failed, aborted)");
   s.AddString("report_out", &o.report_out, "JSON file: what the mission did, written when it ends and at shutdown");
+  s.AddBool("progress", &o.progress, "one line on stdout at every change of the mission's status (for a terminal)");
   const OptionScope m = OptionScope(s).Nested("mission");
   DeclareOptions(m, o.mission);
   m.AddFlatAliases({"face", "depth", "explore", "advance", "auto_start", "mission_id", "required", "clearance",
@@ -194,6 +196,13 @@ CoordinatorNode::CoordinatorNode(NodeRuntime& runtime, CoordinatorNodeOptions op
   runtime_.OnShutdown([this] { WriteReport(); });
 }
 
+int CoordinatorNode::Run() {
+  const int code = runtime_.Run();
+  const MissionState st = coordinator_.state();
+  if (code == 0 && (st == MissionState::kFailed || st == MissionState::kAborted)) return kExitRuntime;
+  return code;
+}
+
 void CoordinatorNode::Tick(int64_t now) {
   if (!started_) {
     started_ = true;
@@ -273,6 +282,18 @@ void CoordinatorNode::PublishStatus(int64_t now) {
   last_status_key_ = key;
   last_status_ = now;
   Publish(runtime_.bus(), options_.mission_channel, ToLcm(s, now));
+  if (options_.progress) PrintProgress(s, now);
+}
+
+void CoordinatorNode::PrintProgress(const MissionStatus& s, int64_t now) {
+  std::string line = std::string(ToString(s.state)) + "  " + s.message;
+  if (s.tasks_total > 0) line += "  [subtasks " + std::to_string(s.tasks_done) + "/" + std::to_string(s.tasks_total) + "]";
+  if (!s.waiting_for.empty()) line += "  (waiting for " + s.waiting_for + ")";
+  if (line == last_progress_) return;
+  last_progress_ = line;
+  const double t = static_cast<double>(now - started_utime_) * 1e-6;
+  std::printf("[%4d:%02d] %s\n", static_cast<int>(t) / 60, static_cast<int>(t) % 60, line.c_str());
+  std::fflush(stdout);
 }
 
 void CoordinatorNode::WriteReport() const {

@@ -47,6 +47,7 @@ struct CoordinatorNodeOptions {
   double status_period = 1.0;         // s between MISSION_STATUS messages (and on every change)
   double boom_stowed_height = 2.3;    // m: CUTTER_STATE's boom at least this high counts as raised
   bool exit_when_done = false;        // stop the process when the mission has ended
+  bool progress = false;              // one line on stdout at every change of the mission's status
   std::string report_out;             // JSON: what the mission did ("" = none)
   CoordinatorOptions mission;
 };
@@ -57,7 +58,9 @@ class CoordinatorNode {
  public:
   // Subscribes and adds the timers (call after runtime.Start()). Throws UsageError on bad options.
   CoordinatorNode(NodeRuntime& runtime, CoordinatorNodeOptions options);
-  int Run() { return runtime_.Run(); }
+  // The runtime's exit code; 3 (kExitRuntime) when the mission ended FAILED or ABORTED, so a
+  // supervisor that ends the fleet with the mission passes the outcome on.
+  int Run();
   const Coordinator& coordinator() const { return coordinator_; }
 
  private:
@@ -65,6 +68,7 @@ class CoordinatorNode {
   void PublishOutputs(int64_t now);
   void PublishStatus(int64_t now);
   void WriteReport() const;
+  void PrintProgress(const MissionStatus& s, int64_t now);
 
   NodeRuntime& runtime_;
   CoordinatorNodeOptions options_;
@@ -73,6 +77,7 @@ class CoordinatorNode {
   std::deque<int64_t> path_order_;
   int64_t last_status_ = 0;
   std::string last_status_key_;
+  std::string last_progress_;
   bool started_ = false;
   bool report_written_ = false;
   int64_t started_utime_ = 0;

@@ -260,7 +260,9 @@ TEST(CoordinatorNodeTest, TheReportSaysWhatTheMissionDid) {
   plan.reason = "no face within 5 m of (40.0, 3.0)";
   h.bus->InjectMessage("TASK_PLAN", TaskPlanToLcm(msg));
   h.Tick(3);
-  // plan_attempts = 2: asked once more, refused again; the mission fails and says why.
+  // plan_attempts = 2: asked once more (after the retry delay, 3 s), refused again; the
+  // mission fails and says why.
+  h.Tick(30);
   const auto again = h.Out<task_request_t>("TASK_REQUEST");
   ASSERT_EQ(again.size(), 2u);
   msg.request_id = again[1].request_id;
@@ -278,7 +280,7 @@ TEST(CoordinatorNodeTest, TheReportSaysWhatTheMissionDid) {
 TEST(CoordinatorNodeTest, EveryOptionIsReachable) {
   const auto keys = ExpectEveryOptionReachable<CoordinatorNodeOptions>(
       CoordinatorNodeOptions{}, [](ConfigSchema& s, CoordinatorNodeOptions& o) { DeclareOptions(s, o); });
-  EXPECT_EQ(keys.size(), 18u + 25u);  // 18 of the node, 25 of the mission
+  EXPECT_EQ(keys.size(), 19u + 26u);  // 19 of the node, 26 of the mission
 }
 
 }  // namespace

@@ -189,7 +189,7 @@ struct FakeFleet {
         continue;
       }
       Pose2 end = vehicle;
-      end.x += t.depth - 0.3;
+      end.x -= 0.4;  // the cutter backs out of the cut
       if (cut_received.size() == 1) end.y += first_cut_side_shift;
       jobs.push_back({t.id, now + std::llround(cut_time * 1e6), end, false, true});
       Status(t.id, TaskState::kActive, "sumping", 0.0);
@@ -282,10 +282,10 @@ TEST(CoordinatorTest, TheNextSubtasksPathIsPlannedWhileTheCutRuns) {
   const std::vector<double>& waits = c.stats().planning_waits;
   EXPECT_EQ(std::count_if(waits.begin(), waits.end(), [](double w) { return w == 0.0; }), 2)
       << "a fresh path takes at least a tick (the planner answers between ticks)";
-  // The pre-planned requests started where the cuts would end: the cut's target, depth - cusp ahead.
+  // The pre-planned requests started where the cuts would end: backed out, 0.4 m behind their target.
   int ahead = 0;
   for (const PathRequestOut& r : f.path_requests)
-    if (std::abs(r.start.x - (34.9 + 0.7)) < 1e-9 && (std::abs(r.start.y - 1.6) < 1e-9 || std::abs(r.start.y - 4.4) < 1e-9))
+    if (std::abs(r.start.x - (34.9 - 0.4)) < 1e-9 && (std::abs(r.start.y - 1.6) < 1e-9 || std::abs(r.start.y - 4.4) < 1e-9))
       ++ahead;
   EXPECT_EQ(ahead, 2);
 }
@@ -357,7 +357,7 @@ TEST(CoordinatorTest, AFailedDriveIsPlannedAnewFromWhereTheVehicleIs) {
     if (std::llround(r.goal.x) == 35 && std::abs(r.goal.y - 1.6) < 1e-9) ids.push_back(r.request_id);
   ASSERT_EQ(ids.size(), 2u);
   EXPECT_NE(ids[0], ids[1]) << "a new request, not the old one again";
-  EXPECT_TRUE(f.Logged("retrying 'into position' (attempt 2)"));
+  EXPECT_TRUE(f.Logged("retrying 'into position' (attempt 2) in 3 s"));
 }
 
 TEST(CoordinatorTest, StationsThatCannotBeReachedEndTheExplorationWithTheReason) {

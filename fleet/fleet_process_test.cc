@@ -136,21 +136,22 @@ TEST(FleetCli, TheMissionFleetFileChecksWithTheDemosVariables) {
   TempDir dir("fleet_cli");
   const auto run = RunProgram(kFleet,
                               {"check", kSource + "/fleet/mission.fleet", "--bin", kBin, "--out", dir / "demo",
-                               "SEED=7", "SPEED=1.0", "START_POSE=3,3,90deg"},
+                               "SEED=7", "TRAM_SPEED=1.0", "START_POSE=3,3,90deg", "FACE=5,3,0"},
                               dir / "out.txt", 10);
   ASSERT_EQ(run.exit_code, 0) << run.output;
   for (const char* process : {"lcm_logger", "vehicle_sim", "ladar_driver", "contour_mapper", "path_planner",
-                              "path_tracker", "survey_client"})
+                              "path_tracker", "cutter", "task_planner", "coordinator"})
     EXPECT_EQ(LinesContaining(run.output, std::string(process) + " ").size() >= 1, true) << process << "\n" << run.output;
-  EXPECT_NE(run.output.find("--max-forward-speed 1.0"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("--vehicle.max-forward-speed 1.0"), std::string::npos) << run.output;
   EXPECT_NE(run.output.find("--start-pose 3,3,90deg"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("--face 5,3,0"), std::string::npos) << run.output;
 }
 
 TEST(FleetCli, UnitsWritesAServicePerProcessAndATargetPerGroup) {
   TempDir dir("fleet_cli");
   const auto run = RunProgram(kFleet,
                               {"units", kSource + "/fleet/mission.fleet", dir / "units", "--groups", "vehicle", "--bin",
-                               "/opt/minenav/bin", "SEED=7", "SPEED=1.0", "START_POSE=3,3,90deg"},
+                               "/opt/minenav/bin", "SEED=7", "TRAM_SPEED=1.0", "START_POSE=3,3,90deg", "FACE=5,3,0"},
                               dir / "out.txt", 10);
   ASSERT_EQ(run.exit_code, 0) << run.output;
   EXPECT_TRUE(fs::exists(dir / "units/minenav-vehicle.target"));
@@ -177,7 +178,7 @@ TEST(FleetUnits, GeneratedUnitsPassSystemdAnalyzeVerify) {
   TempDir dir("fleet_units");
   const auto run = RunProgram(kFleet,
                               {"units", kSource + "/fleet/mission.fleet", dir / "units", "--bin", kBin, "--out",
-                               dir / "var", "SEED=7", "SPEED=1.0", "START_POSE=3,3,90deg"},
+                               dir / "var", "SEED=7", "TRAM_SPEED=1.0", "START_POSE=3,3,90deg", "FACE=5,3,0"},
                               dir / "out.txt", 10);
   ASSERT_EQ(run.exit_code, 0) << run.output;
   std::vector<std::string> units;

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <set>
+#include <utility>
 
 #include "common/file_io.h"
 #include "common/node/conversions.h"
@@ -117,9 +118,11 @@ class MissionLogReader {
         s.nodes.push_back({n.name, CheckedState<BtStatus>(n.state, 3, "mission_node_t")});
       r.mission_status.push_back(std::move(s));
     } else if (ch == c_.task_plan) {
-      const TaskPlan plan = TaskPlanFromLcm(Decode<task_plan_t>(e)).plan;
-      for (const Task& t : plan.tasks)
-        if (t.kind == TaskKind::kScanStation && stations_.insert(t.id).second) r.scan_stations.push_back(t.target);
+      // A plan answers one request (re-sent answers repeat its plan id); task ids count within a plan.
+      const TaskPlanMessage message = TaskPlanFromLcm(Decode<task_plan_t>(e));
+      for (const Task& t : message.plan.tasks)
+        if (t.kind == TaskKind::kScanStation && stations_.insert({message.plan_id, t.id}).second)
+          r.scan_stations.push_back(t.target);
     } else if (ch == c_.heartbeat) {
       r.heartbeats.push_back(HeartbeatSampleFromLcm(Decode<heartbeat_t>(e), e.timestamp));
     } else if (ch == c_.contour_map) {
@@ -129,7 +132,7 @@ class MissionLogReader {
 
   const MissionLogChannels& c_;
   MissionLog out_;
-  std::set<int64_t> stations_;
+  std::set<std::pair<int64_t, int64_t>> stations_;  // (plan id, task id)
   std::optional<LogEvent> last_map_;
 };
 

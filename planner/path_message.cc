@@ -23,6 +23,8 @@ PathMessage PathFromLcm(const path_t& m, double turn_radius) {
     const path_segment_t& s = m.segments[k];
     const std::string where = "path segment " + std::to_string(k) + ": ";
     if (s.motion < 0 || s.motion > 6) throw InputError(where + "unknown motion " + std::to_string(s.motion));
+    if (!std::isfinite(s.speed) || s.speed < 0.0)
+      throw InputError(where + "speed " + std::to_string(s.speed) + " m/s is not finite and >= 0");
     MotionPiece piece;
     piece.motion = static_cast<Motion>(s.motion);
     piece.end = FromLcm(s.end);
@@ -46,6 +48,7 @@ PathMessage PathFromLcm(const path_t& m, double turn_radius) {
     if (TranslationDistance(expected, piece.end) > 0.02 || HeadingDistance(expected, piece.end) > DegToRad(0.5))
       throw InputError(where + ToString(piece.motion) + " cannot reach its end pose from the previous one");
     out.path.pieces.push_back(piece);
+    out.speeds.push_back(s.speed);
     at = piece.end;
   }
   return out;

@@ -8,6 +8,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "minenav/path_t.hpp"
 #include "planner/motion.h"
@@ -20,9 +21,10 @@ struct PathMessage {
   bool feasible = false;
   std::string status;
   PlannedPath path;
+  std::vector<double> speeds;  // m/s, each piece's speed limit (the segment's speed; 0 = none)
 };
 
-// turn_radius (m): arcs must have it (within 1 %).
+// turn_radius (m): arcs must have it (within 1 %); a segment speed must be finite and >= 0.
 PathMessage PathFromLcm(const path_t& m, double turn_radius);
 // The path as path_t segments (motion, end pose, radius, speed: m/s, every segment's limit)
 // tagged with request_id: what the live path_planner publishes.

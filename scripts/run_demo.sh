@@ -1,105 +1,116 @@
 #!/usr/bin/env bash
-# The main job: the fleet on its built-in simulated mine, live on the LCM bus.
+# The main job: the whole mission on the fleet's built-in simulated mine, live on the LCM bus.
 #
-#   scripts/run_demo.sh [--stations N] [--seed S] [--speed M/S] [--out DIR]
+#   scripts/run_demo.sh [--seed S] [--fast F] [--depth D] [--out DIR] [--small] [--max-stations N]
 #
-# Generates a room-and-pillar mine (thesis 5.2.1), starts vehicle_sim, ladar_driver
-# (Typhoon, 2048 points, 10 Hz), the live contour_mapper (thesis ch. 4: it maps while the
-# vehicle drives, inserting a scan every metre and tracking the others), the live
-# path_planner, the path_tracker (on the mapper's POSE, never SIM_TRUTH) and lcm-logger inside
-# a private network namespace (nothing leaves this machine); survey_client drives the survey
-# route station by station (a PATH_REQUEST each, tracked until the tracker reports it done), and leaves in DIR (default out/demo-<UTC time>): the
-# log, the world, the stations, the live contour map (contour_map.json, with a checkpoint of
-# the mapper saved every 10 scans, so a crash loses the last few scans, not the map), a
-# summary of the log, an SVG of the run and an SVG of the contour map rebuilt from the log
-# by the batch mapper (same policy as live).
+# Generates a room-and-pillar section (thesis 5.2.1; 7 m entries: the 3.3 x 10 m miner's turn
+# into a crosscut needs more than 6 m, planner/README.md) and runs the mission's fleet
+# (fleet/mission.fleet, under the fleet supervisor, in a private network namespace: nothing
+# leaves this machine): vehicle_sim, ladar_driver, the live contour_mapper, path_planner,
+# path_tracker, cutter, task_planner, the coordinator, and lcm-logger recording every message.
+# With nothing known in advance but the start pose, the miner explores the section (the
+# contour map grows live; the task planner chooses each scan station; the vehicle is driven
+# closed-loop on the mapper's estimate, never on the truth), then advances the entry whose face
+# is given by the section's plan with a box cut and a slab cut, and backs out for the roof
+# bolter. A progress line per change of the mission's state; Ctrl-C stops the fleet and still
+# writes the report of what was done. Leaves in DIR (default out/mission-<UTC time>):
 #
-# The miner's real cruise speed is 0.076 m/s; the demo drives at --speed (default 1 m/s)
-# so that a 16-station survey takes about two minutes.
+#   mission.lcm           the log of every message (lcm-logger)
+#   mine.json             the true section at the start
+#   contour_map.json      the live contour map (and the mapper's checkpoint mapper.ckpt)
+#   contour_map_batch.json the map rebuilt from the log by the batch mapper (same policy)
+#   mission.json          the coordinator's account (subtasks, events, planning waits)
+#   report.md, report.json the report: explored area and time, map accuracy against the true
+#                         world, pose error along the drive, each cut's depth against the
+#                         request, planning times, what was retried or refused
+#   mission.svg, mission.png  the final map over the true walls, planned and driven paths
+#   NAME.log              each process's log; fleet.log the supervisor's status tables
+#
+# --fast F (default 6) multiplies the miner's speeds (tramming 0.076 m/s, turning 0.05 rad/s,
+# the cutter's sumping and shearing) so the mission takes minutes; the report states it.
+# --small: a one-pillar section and a 0.5 m cut (what CI runs). Watch it live in a browser:
+# viewer/view_demo.sh (in another terminal, while it runs).
 source "$(dirname "$0")/common.sh"
 
-stations=16 seed=7 speed=1.0 out=""
+seed=7 fast=6 depth=1.0 out="" small=0 max_stations=30
 while [ $# -gt 0 ]; do
   case "$1" in
-    --stations) stations="$2"; shift 2 ;;
     --seed) seed="$2"; shift 2 ;;
-    --speed) speed="$2"; shift 2 ;;
+    --fast) fast="$2"; shift 2 ;;
+    --depth) depth="$2"; shift 2 ;;
     --out) out="$2"; shift 2 ;;
+    --small) small=1; shift ;;
+    --max-stations) max_stations="$2"; shift 2 ;;
     -h|--help) awk 'NR > 1 && /^#/ { print; next } NR > 1 { exit }' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "run_demo.sh: unknown option '$1' (see --help)" >&2; exit 2 ;;
   esac
 done
-[[ "$stations" =~ ^[0-9]+$ && "$stations" -ge 2 && "$stations" -le 42 ]] ||
-  { echo "run_demo.sh: --stations must be 2..42" >&2; exit 2; }
+number='^[0-9]+([.][0-9]+)?$'
+[[ "$seed" =~ ^[0-9]+$ ]] || { echo "run_demo.sh: --seed must be a whole number" >&2; exit 2; }
+[[ "$fast" =~ $number ]] && awk "BEGIN { exit !($fast >= 1 && $fast <= 20) }" ||
+  { echo "run_demo.sh: --fast must be a number from 1 to 20" >&2; exit 2; }
+[[ "$depth" =~ $number ]] && awk "BEGIN { exit !($depth >= 0.1 && $depth <= 5) }" ||
+  { echo "run_demo.sh: --depth must be a number of metres from 0.1 to 5" >&2; exit 2; }
+[[ "$max_stations" =~ ^[0-9]+$ && "$max_stations" -ge 1 ]] ||
+  { echo "run_demo.sh: --max-stations must be a whole number >= 1" >&2; exit 2; }
 
 minenav_install_deps
 build="$MINENAV_ROOT/build/release"
 echo "== building in $build"
-minenav_build "$build" -DMINENAV_WERROR=ON -- vehicle_sim ladar_driver log_tool contour_mapper path_planner \
-  path_tracker survey_client
+minenav_build "$build" -DMINENAV_WERROR=ON -- vehicle_sim ladar_driver contour_mapper path_planner path_tracker \
+  cutter task_planner coordinator log_tool fleet
 bin="$build/bin"
 
-out="${out:-$MINENAV_ROOT/out/demo-$(date -u +%Y%m%d-%H%M%S)}"
+out="${out:-$MINENAV_ROOT/out/mission-$(date -u +%Y%m%d-%H%M%S)}"
 mkdir -p "$out"
 out="$(cd "$out" && pwd)"
 echo "== outputs in $out"
 
-"$bin/log_tool" generate --kind mine --seed "$seed" --world-out "$out/mine.json" \
-  --stations-out "$out/all_stations.csv"
-head -n $((stations + 1)) "$out/all_stations.csv" > "$out/stations.csv"
-start_pose="$(sed -n 2p "$out/stations.csv")"
+# The section: pillars 12 m square, entries 7 m wide; the panel's boundary wall one entry
+# width outside the pillars (sim/mine_generator.h). The miner starts in the south entry
+# facing east; the face to advance is the boundary wall at the east end of that entry.
+rows=1 cols=2
+[ $small -eq 1 ] && { cols=1; [ "$depth" = "1.0" ] && depth=0.5; }
+room=7 pillar=12
+"$bin/log_tool" generate --kind mine --rows $rows --cols $cols --room-width $room --pillar-size $pillar \
+  --seed "$seed" --world-out "$out/mine.json" --stations-out "$out/plan_stations.csv" >/dev/null
+width=$(awk "BEGIN { print $cols * ($pillar + $room) + $room }")
+start_pose="9.5,$(awk "BEGIN { print $room / 2 }"),0"
+face="$(awk "BEGIN { print $width - 4 }"),$(awk "BEGIN { print $room / 2 }"),0"
 
-# Everything below runs in a fresh network namespace: loopback only, multicast routed on it.
-# Scans arrive at 10 Hz while the vehicle drives: insert one per metre or 0.3 rad, track the rest.
-mapper_policy="--insert-min-translation 1.0 --insert-min-rotation 0.3 --final-refinement-rounds 2"
-# The live mapper's checkpoint (and contour_map.json) every 10 handled scans, i.e. every 1 s
-# of 10 Hz scans (inserted and tracked ones count alike): without --checkpoint-every it is
-# written only at a clean shutdown and a crash loses the whole live map. A checkpoint holds
-# the inserted scans, 2048 points x 16 bytes each: 1.3 MB after 40 inserts, written in
-# 0.004-0.023 s (measured here; mapper/README.md), against 0.16 s of mapping per scan. This
-# survey inserts one scan per metre or 0.3 rad, so a few MB and a few hundredths of a second
-# per write: about 1 % of the mapper's time.
-checkpoint_every=10
-# The survey vehicle's footprint (W,L in m, centred on its pose): the planner plans for it and
-# the tracker checks its motion with it. The stations of the generated survey point anywhere
-# in the 6 m entries, so a compact ladar vehicle surveys; the 3.3 x 10 m miner is
-# path_planner's default and the maneuvers' (planner/README.md).
-footprint_w=1.2 footprint_l=2.0
-export out bin speed seed start_pose mapper_policy checkpoint_every footprint_w footprint_l
-"$MINENAV_ROOT/tests/bus/private_net.sh" --port 7667 -- bash -c '
-  set -euo pipefail
-  pids=()
-  cleanup() { for p in "${pids[@]}"; do kill -INT "$p" 2>/dev/null || true; done; wait || true; }
-  trap cleanup EXIT
-  lcm-logger --lcm-url="$LCM_DEFAULT_URL" --quiet "$out/survey.lcm" & pids+=($!)
-  "$bin/vehicle_sim" --world "$out/mine.json" --start-pose "$start_pose" --seed "$seed" \
-    --max-forward-speed "$speed" --max-acceleration 1 --max-deceleration 2 \
-    --max-turn-in-place-rate 0.6 --max-yaw-acceleration 2 --heartbeat-period 1 \
-    2> "$out/vehicle_sim.log" & pids+=($!)
-  "$bin/ladar_driver" --world "$out/mine.json" --sensor typhoon --seed "$seed" \
-    2> "$out/ladar_driver.log" & pids+=($!)
-  "$bin/contour_mapper" $mapper_policy --checkpoint "$out/mapper.ckpt" --checkpoint-every "$checkpoint_every" \
-    --save-map "$out/contour_map.json" 2> "$out/contour_mapper.log" & pids+=($!)
-  "$bin/path_planner" --footprint "$footprint_w,$footprint_l" --speed "$speed" --deadline 5 \
-    2> "$out/path_planner.log" & pids+=($!)
-  "$bin/path_tracker" --vehicle-width "$footprint_w" --vehicle-length "$footprint_l" \
-    --tracker.cruise-speed "$speed" --tracker.turn-rate 0.5 --tracker.deceleration 2 \
-    2> "$out/path_tracker.log" & pids+=($!)
-  sleep 1
-  echo "== driving the survey on the fleet'"'"'s own estimate: PATH_REQUEST per station, path_planner on the"
-  echo "   live contour map, path_tracker on the mapper'"'"'s POSE (progress below; Ctrl-C stops)"
-  "$bin/survey_client" --stations "$out/stations.csv" --requests.dwell 0.5 --log-level info
-  sleep 0.5
-'
+# The speed factor: the miner's speeds (fleet/mission.fleet's variables) times F.
+times() { awk "BEGIN { printf \"%.4g\", $1 * $fast }"; }
+shear_time=$(awk "BEGIN { printf \"%.4g\", 12 / $fast }")
+speeds=(TRAM_SPEED="$(times 0.076)" TURN_RATE="$(times 0.05)" ACCELERATION="$(times 0.05)"
+        DECELERATION="$(times 0.1)" YAW_ACCELERATION="$(times 0.05)" APPROACH_SPEED="$(times 0.05)"
+        SUMP_SPEED="$(times 0.02)" CUSP_SPEED="$(times 0.03)" CUTTER_TURN_RATE="$(times 0.03)"
+        BOOM_RATE="$(times 0.2)" SHEAR_TIME="$shear_time")
+echo "== the mission: explore the ${cols}x${rows}-pillar section from $start_pose, then advance the face at $face by $depth m"
+echo "   speed factor $fast: tramming $(times 0.076) m/s (the miner's 0.076 x $fast); progress below, Ctrl-C stops"
 
-echo "== log summary"
-"$bin/log_tool" info "$out/survey.lcm" | tee "$out/survey_info.txt"
-"$bin/log_tool" render "$out/survey.lcm" --world "$out/mine.json" --out "$out/survey.svg" \
-  --title "MINENAV survey demo: $stations stations, seed $seed"
-echo "== live mapper: $(grep -E "scans received" "$out/contour_mapper.log" | tail -1 | sed 's/.*info: //')"
-echo "== contour map from the log (batch mapper, same policy)"
-"$bin/contour_mapper" --log "$out/survey.lcm" $mapper_policy --map-out "$out/contour_map_batch.json" \
-  --poses-out "$out/contour_poses.csv" --svg-out "$out/contour_map.svg" 2> "$out/contour_mapper_batch.log" ||
-  { tail -5 "$out/contour_mapper_batch.log" >&2; exit 3; }
-tail -1 "$out/contour_mapper_batch.log"
-echo "== done: open $out/survey.svg and $out/contour_map.svg"
+status=0
+"$MINENAV_ROOT/tests/bus/private_net.sh" --port 7667 -- \
+  "$bin/fleet" run "$MINENAV_ROOT/fleet/mission.fleet" --out "$out" --status-period 60 \
+  SEED="$seed" START_POSE="$start_pose" FACE="$face" DEPTH="$depth" MAX_STATIONS="$max_stations" \
+  "${speeds[@]}" > >(tee "$out/fleet.log") || status=$?
+case $status in
+  0) echo "== the mission ended" ;;
+  130) echo "== stopped by Ctrl-C: the report covers what was done" ;;
+  *) echo "== the fleet ended with exit code $status (see $out/fleet.log and $out/coordinator.log)" ;;
+esac
+
+[ -s "$out/mission.lcm" ] || { echo "run_demo.sh: no log was recorded ($out/mission.lcm)" >&2; exit 3; }
+echo "== the contour map rebuilt from the log (batch mapper, same policy)"
+"$bin/contour_mapper" --log "$out/mission.lcm" --insert-min-translation 1.0 --insert-min-rotation 0.3 \
+  --final-refinement-rounds 2 --map-out "$out/contour_map_batch.json" --svg-out "$out/contour_map_batch.svg" \
+  2> "$out/contour_mapper_batch.log" || echo "   (the batch mapper failed: $out/contour_mapper_batch.log)"
+echo "== the report"
+report_args=(--log "$out/mission.lcm" --world "$out/mine.json" --report-out "$out/report.md"
+             --json-out "$out/report.json" --svg-out "$out/mission.svg" --png-out "$out/mission.png"
+             --note "speed factor $fast: tramming at $(times 0.076) m/s, the cutter's speeds x $fast (the real miner: x 1)")
+[ -s "$out/contour_map.json" ] && report_args+=(--map "$out/contour_map.json")
+[ -s "$out/mission.json" ] && report_args+=(--mission "$out/mission.json")
+"$bin/log_tool" mission-report "${report_args[@]}" || { echo "run_demo.sh: the report failed" >&2; exit 3; }
+cat "$out/report.md"
+echo "== done: $out/report.md, $out/mission.png (and .svg)"
+exit $status

@@ -109,6 +109,45 @@ TEST(CutterheadTest, AShearToTheFloorCutsTheSweptAreaOutOfTheWorld) {
   for (double y : {-2.5, 2.5}) EXPECT_NEAR(FaceAt(w, y), 16.0, 1e-9) << y;
 }
 
+// Sump 0.6 m from `pose` (drum front at pose.x + 5), then shear to the floor.
+void SumpAndShear(Cutterhead& head, World& w, const Pose2& pose, double depth, int64_t t) {
+  head.Command(Cmd(CutterCommand::Action::kDrumOn), pose, t);
+  head.Command(Cmd(CutterCommand::Action::kSump), pose, t);
+  const Pose2 in(pose.x + depth, pose.y, pose.theta);
+  head.Step(0.1, in, &w, t);
+  head.Command(Cmd(CutterCommand::Action::kShear), in, t);
+  for (int k = 0; k < 1000 && !head.Step(0.1, in, &w, t); ++k) {
+  }
+  head.Command(Cmd(CutterCommand::Action::kSetBoom, 2.4), in, t);
+  for (int k = 0; k < 200; ++k) head.Step(0.1, in, &w, t);
+}
+
+// Thesis 6.2.1, Figure 40: the slab cut takes the rest of the entry's width beside the box
+// cut. The drum overlaps the box cut's free space: it removes only the coal there is (the
+// box cut's rib and the uncut strip), and the face ends at one depth across its width.
+TEST(CutterheadTest, ASlabCutBesideABoxCutCutsOnlyTheCoalLeft) {
+  World w = Entry();
+  Cutterhead head({}, 2.4);
+  SumpAndShear(head, w, Pose2(11, 0, 0), 0.6, kT0);  // the box cut: y in [-1.65, 1.65]
+  EXPECT_NEAR(head.State(kT0).coal_removed, 3.3 * 0.6, 0.02);
+  EXPECT_NEAR(FaceAt(w, -2.3), 16.0, 1e-9);
+  // The slab: the miner 1.3 m to the right, its drum (y in [-2.95, 0.35]) 2 m over the box cut.
+  // Beforehand the drum, off, may come up to the uncut strip but not touch it.
+  head.Command(Cmd(CutterCommand::Action::kDrumOff), Pose2(10.95, -1.3, 0), kT0);
+  EXPECT_EQ(head.FilterDrive(Forward(0.02), Pose2(10.95, -1.3, 0), w, kT0).mode, DriveCommand::Mode::kVelocity);
+  EXPECT_EQ(head.FilterDrive(Forward(0.02), Pose2(11.0, -1.3, 0), w, kT0).mode, DriveCommand::Mode::kStop)
+      << "the uncut strip touches the drum";
+  const double before = head.State(kT0).coal_removed;
+  SumpAndShear(head, w, Pose2(11, -1.3, 0), 0.6, kT0);
+  // Only the strip y in [-2.95, -1.65] was coal: 1.3 m x 0.6 m.
+  EXPECT_NEAR(head.State(kT0).coal_removed - before, 1.3 * 0.6, 0.02);
+  for (double y : {-2.9, -2.3, -1.7, -1.6, -1.0, 0.0, 1.0, 1.6}) EXPECT_NEAR(FaceAt(w, y), 16.6, 1e-9) << y;
+  EXPECT_NEAR(FaceAt(w, 2.5), 16.0, 1e-9);  // the other side was not in the drum's way
+  EXPECT_NEAR(FaceAt(w, -2.98), 16.0, 1e-9);  // nor the 5 cm by the rib
+  // The box cut's right rib is gone: nothing across y = -1.65 between x = 16 and 16.6.
+  EXPECT_FALSE(CastRay(Eigen::Vector2d(16.3, -1.0), -kPi / 2, w.Segments(), 1.5));
+}
+
 TEST(CutterheadTest, EveryOptionIsDeclaredAndReachable) {
   EXPECT_EQ(ExpectEveryOptionReachable<CutterheadOptions>().size(), 9u);
 }

@@ -27,7 +27,7 @@ std::string ValidateCutterOptions(const CutterOptions& o) {
   for (double v : positive)
     if (!std::isfinite(v) || v <= 0.0) return "cutter: reach, width, speeds, distances and times must be positive";
   const double non_negative[] = {o.boom_tolerance, o.max_square_angle, o.heading_tolerance, o.standoff,
-                                 o.depth_tolerance, o.cusp_distance, o.stall_distance};
+                                 o.depth_tolerance, o.cusp_distance, o.stall_distance, o.withdraw_gap};
   for (double v : non_negative)
     if (!std::isfinite(v) || v < 0.0) return "cutter: tolerances and margins must be finite and non-negative";
   if (o.max_cycles < 1) return "cutter: max_cycles must be at least 1";
@@ -55,6 +55,10 @@ void DeclareOptions(OptionScope s, CutterOptions& o) {
   s.AddDouble("cusp_distance", &o.cusp_distance, "m", "backed up with the drum turning to remove the cusp", 0.0,
               5.0);
   s.AddDouble("cusp_speed", &o.cusp_speed, "m/s", "backing up over the cusp", 0.001, 1.0);
+  s.AddDouble("withdraw_gap", &o.withdraw_gap, "m",
+              "at the end of a cut the miner backs out (at approach_speed) until the drum's front is this far before "
+              "the face the cut started from; 0 = it stays in the cut",
+              0.0, 10.0);
   s.AddDouble("max_pose_age", &o.max_pose_age, "s",
               "a pose estimate older than this while the tracks move stops the cut", 0.1, 600.0);
   s.AddDouble("stall_time", &o.stall_time, "s", "sumping this long with less than stall_distance advance: stall",
@@ -129,6 +133,7 @@ const char* Cutter::StepName(Step s) {
     case Step::kCusp: return "removing the cusp";
     case Step::kRaise: return "raising the boom";
     case Step::kFinish: return "stopping the drum";
+    case Step::kWithdraw: return "backing out of the cut";
     case Step::kEnded: return "ended";
   }
   return "?";
@@ -162,10 +167,14 @@ std::string Cutter::Start(const CutTask& task, const std::optional<StampedPose>&
   if ((face_.a - p.translation()).dot(normal_) < 0.0) normal_ = -normal_;
   face_offset_ = face_.a.dot(normal_);
   heading_ = std::atan2(normal_.y(), normal_.x());
-  const SegmentProjection foot = ProjectOntoSegment(p.translation(), face_);
   const double off = std::abs(NormalizeAngle(heading_ - p.theta));
   const double gap = face_offset_ - (p.translation().dot(normal_) + options_.reach);
-  if (foot.region != SegmentRegion::kInterior)
+  // The face must lie ahead of the drum, across part of its width at least: a whole face
+  // (a box cut) or the part of one left beside a cut (a slab cut, thesis 6.2.1), measured
+  // across the face's normal from the vehicle's centre.
+  const Eigen::Vector2d across(-normal_.y(), normal_.x());
+  const double a = (face_.a - p.translation()).dot(across), b = (face_.b - p.translation()).dot(across);
+  if (std::min(std::max(a, b), options_.width / 2.0) <= std::max(std::min(a, b), -options_.width / 2.0))
     return refuse("refused: no face in reach: the face line does not lie ahead of the vehicle");
   if (gap > options_.max_face_distance)
     return refuse("refused: no face in reach: the face is " + CutterNumber(gap) + " m ahead of the cutterhead (reach " +
@@ -203,6 +212,7 @@ void Cutter::Fail(const std::string& why) {
 void Cutter::Cancel(const std::string& why) {
   if (!active()) return;
   Fail(why);
+  status_.state = CutterStatus::State::kCanceled;
 }
 
 std::optional<CutterCommand> Cutter::Send(CutterCommand::Action action, double boom, int64_t now) {
@@ -264,7 +274,7 @@ Cutter::Output Cutter::Update(int64_t now, const std::optional<StampedPose>& pos
     return Update(now, pose, state);
   }
   const bool moving_step = step_ == Step::kSquare || step_ == Step::kApproach || step_ == Step::kSump ||
-                           step_ == Step::kCusp;
+                           step_ == Step::kCusp || step_ == Step::kWithdraw;
   if (moving_step) {
     const double age = pose ? Seconds(now, pose->utime) : INFINITY;
     if (age > options_.max_pose_age) {
@@ -387,15 +397,24 @@ Cutter::Output Cutter::Update(int64_t now, const std::optional<StampedPose>& pos
       break;
     case Step::kFinish:
       out.cutter = Send(A::kDrumOff, 0, now);
-      if (!state->drum_on && state->utime > step_since_) {
-        status_.state = CutterStatus::State::kDone;
-        status_.message = "cut " + CutterNumber(status_.depth) + " m deep (target " + CutterNumber(status_.target) + " m) in " +
-                          std::to_string(status_.cycles) + " cycles";
-        step_ = Step::kEnded;
-        status_.step = StepName(step_);
-        stop_sent_ = true;  // this update's STOP is the last word
-      }
+      if (!state->drum_on && state->utime > step_since_) Enter(Step::kWithdraw, now);
       break;
+    case Step::kWithdraw: {
+      // The drum's front `withdraw_gap` before the face line the cut started from; a cut
+      // that ends nearer (withdraw_gap 0, or a shallow one) ends where it is.
+      const double out_by = -DepthAt(*predicted) - options_.withdraw_gap;
+      if (out_by < 0.0) {
+        out.drive = Drive(M::kVelocity, -std::clamp(-0.5 * out_by, 0.005, options_.approach_speed), 0.0, now);
+        break;
+      }
+      status_.state = CutterStatus::State::kDone;
+      status_.message = "cut " + CutterNumber(status_.depth) + " m deep (target " + CutterNumber(status_.target) +
+                        " m) in " + std::to_string(status_.cycles) + " cycles";
+      step_ = Step::kEnded;
+      status_.step = StepName(step_);
+      stop_sent_ = true;  // this update's STOP is the last word
+      break;
+    }
     case Step::kIdle:
     case Step::kEnded:
       break;

@@ -19,10 +19,11 @@ minenav_check_links_no_ground_truth(minenav_cutter minenav_cutter_node cutter)
 minenav_test(NAME cutter_test NO_LCM SOURCES cutter_test.cc LIBS minenav_cutter)
 minenav_test(NAME cutter_node_test SOURCES cutter_node_test.cc LIBS minenav_cutter_node)
 # The sump-shear cycle closed in simulation: the cutter library, the simulated miner and
-# cutterhead (sim/), the ladar ray cast and the contour mapper's live changing-world map.
+# cutterhead (sim/), the simulated ladar and the live contour mapper's changing-world map
+# (the tracker's simulation harness: testing/mapper_pose_source.h).
 if(TARGET minenav_mapper)
   minenav_test(NAME cutter_sim_test NO_LCM SOURCES cutter_sim_test.cc TIMEOUT 1800
-    LIBS minenav_cutter minenav_sim minenav_mapper)
+    LIBS minenav_cutter minenav_tracker_sim_harness)
 endif()
 
 # Live on the bus (tests/bus/private_net.sh, port 7820): vehicle_sim + ladar_driver +

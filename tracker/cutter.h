@@ -8,7 +8,10 @@
 //   shear down SHEAR: the tracks stop and the boom falls to the floor; meanwhile a pose
 //              estimate taken with the tracks stopped confirms the depth reached;
 //   cusp       back up `cusp_distance` with the drum turning, then raise the boom;
-//   repeat until perception (the pose estimate) confirms the desired depth, then drum off.
+//   repeat until perception (the pose estimate) confirms the desired depth, then drum off;
+//   withdraw  back straight out of the cut until the drum's front is `withdraw_gap` before the
+//              face the cut started from: the miner leaves the cut with the cut's walls
+//              beside it rather than inside them, so the next path starts in free space.
 //
 // Squaring up deviates from the thesis, which drives the miner into the wall and lets the
 // tracks push until the heading is right: the simulator has no contact forces, so the
@@ -54,6 +57,7 @@ struct CutterOptions {
   double depth_tolerance = 0.02;   // m: the cut is done when the confirmed depth is within this of the target
   double cusp_distance = 0.3;      // m backed up with the drum turning
   double cusp_speed = 0.03;        // m/s
+  double withdraw_gap = 0.5;       // m, drum front to the face the cut started from at the end (0: no withdrawal)
   double max_pose_age = 2.0;       // s: an older pose estimate while moving stops the cut
   double stall_time = 15.0;        // s of sumping ...
   double stall_distance = 0.02;    // m ... with less advance than this is a stall
@@ -82,7 +86,7 @@ struct CutTask {
 std::optional<Segment> FindFace(const std::vector<Segment>& map, const Pose2& pose, const CutterOptions& o);
 
 struct CutterStatus {
-  enum class State { kIdle = 0, kActive = 1, kDone = 2, kFailed = 3 };
+  enum class State { kIdle = 0, kActive = 1, kDone = 2, kFailed = 3, kCanceled = 4 };
   State state = State::kIdle;
   int64_t task_id = 0;
   std::string step = "idle";   // the cycle's step
@@ -101,7 +105,7 @@ class Cutter {
   // one-line refusal (also the status's message; the status is then kFailed).
   std::string Start(const CutTask& task, const std::optional<StampedPose>& pose, const std::vector<Segment>& map,
                     int64_t now);
-  // Ends an active cut (tracks stop, drum off) with `why`.
+  // Ends an active cut (tracks stop, drum off) with `why`: state canceled.
   void Cancel(const std::string& why);
 
   void AddOdometry(const OdometryReading& reading);
@@ -122,7 +126,7 @@ class Cutter {
   double DepthAt(const Pose2& pose) const;
 
  private:
-  enum class Step { kIdle, kRaiseBoom, kSquare, kApproach, kDrumOn, kSump, kShear, kCusp, kRaise, kFinish, kEnded };
+  enum class Step { kIdle, kRaiseBoom, kSquare, kApproach, kDrumOn, kSump, kShear, kCusp, kRaise, kFinish, kWithdraw, kEnded };
   void Enter(Step step, int64_t now);
   void Fail(const std::string& why);
   std::optional<Pose2> Predict(const StampedPose& pose) const;

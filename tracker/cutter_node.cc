@@ -69,30 +69,57 @@ CutterNode::CutterNode(NodeRuntime& runtime, const CutterNodeOptions& options)
     const std::optional<CutterCommand> c = CutterCommandFromLcm(m, &why);
     if (!c) throw InputError(why);
     const int64_t now = runtime_.NowUtime();
-    if (c->action == CutterCommand::Action::kStop) {
-      if (!cutter_.active()) return;
-      cutter_.Cancel("canceled by the task channel");
-      MINENAV_LOG(kInfo) << "cut " << cutter_.status().task_id << ": " << cutter_.status().message;
-      runtime_.SetStatus(heartbeat_t::OK, cutter_.status().message);
-      PublishStatus(now);
-      return;
-    }
-    if (c->action != CutterCommand::Action::kSump)
+    if (c->action != CutterCommand::Action::kSump && c->action != CutterCommand::Action::kStop)
       throw InputError(std::string("cut task: action ") + ToString(c->action) + " is not SUMP or STOP");
-    if (cutter_.active()) {
-      MINENAV_LOG(kWarn) << "cut task " << c->seq << " ignored: cut " << cutter_.status().task_id << " is under way";
-      return;
-    }
-    const std::string refused = cutter_.Start(CutTask{c->seq, c->sump_depth, c->face}, pose_, map_, now);
-    if (!refused.empty()) {
-      MINENAV_LOG(kWarn) << "cut task " << c->seq << " " << refused;
-      runtime_.SetStatus(heartbeat_t::WARN, refused);
-    } else {
-      MINENAV_LOG(kInfo) << "cut task " << c->seq << ": " << cutter_.status().message;
-    }
-    PublishStatus(now);
+    OnTask(*c, now);
   });
   runtime_.AddTimer(1.0 / options_.rate, [this](int64_t now) { Tick(now); });
+}
+
+void CutterNode::OnTask(const CutterCommand& c, int64_t now) {
+  const CutterStatus& st = cutter_.status();
+  // The sender repeats a task until it is acknowledged: the repeat of the task under way
+  // (or of the last one, ended) is answered with its latest status and changes nothing.
+  const bool known = last_status_ && c.seq == last_status_->task_id;
+  if (c.action == CutterCommand::Action::kStop) {
+    if (cutter_.active() && c.seq == st.task_id) {
+      cutter_.Cancel("canceled by the sender");
+      MINENAV_LOG(kInfo) << "cut " << st.task_id << ": " << st.message;
+      runtime_.SetStatus(heartbeat_t::OK, st.message);
+      PublishStatus(now);
+    } else if (known) {
+      Republish(now);
+    } else {
+      MINENAV_LOG(kWarn) << "STOP of cut task " << c.seq << " ignored: "
+                         << (cutter_.active() ? "cut " + std::to_string(st.task_id) + " is under way"
+                                              : std::string("no cut is under way"));
+    }
+    return;
+  }
+  if (known) {
+    MINENAV_LOG(kDebug) << "cut task " << c.seq << " repeated: status re-published";
+    Republish(now);
+    return;
+  }
+  if (cutter_.active()) {
+    MINENAV_LOG(kWarn) << "cut task " << c.seq << " ignored: cut " << st.task_id << " is under way";
+    return;
+  }
+  const std::string refused = cutter_.Start(CutTask{c.seq, c.sump_depth, c.face}, pose_, map_, now);
+  if (!refused.empty()) {
+    MINENAV_LOG(kWarn) << "cut task " << c.seq << " " << refused;
+    runtime_.SetStatus(heartbeat_t::WARN, refused);
+  } else {
+    MINENAV_LOG(kInfo) << "cut task " << c.seq << ": " << st.message;
+  }
+  PublishStatus(now);
+}
+
+void CutterNode::Republish(int64_t now) {
+  task_status_t m = *last_status_;
+  m.utime = now;
+  if (cutter_.active() && m.task_id == cutter_.status().task_id) m.progress = static_cast<float>(cutter_.status().progress());
+  Publish(runtime_.bus(), options_.status_channel, m);
 }
 
 void CutterNode::PublishStatus(int64_t now) {
@@ -106,11 +133,13 @@ void CutterNode::PublishStatus(int64_t now) {
     case CutterStatus::State::kActive: m.state = task_status_t::ACTIVE; break;
     case CutterStatus::State::kDone: m.state = task_status_t::DONE; break;
     case CutterStatus::State::kFailed: m.state = task_status_t::FAILED; break;
+    case CutterStatus::State::kCanceled: m.state = task_status_t::CANCELED; break;
   }
   m.progress = static_cast<float>(st.progress());
   m.message = st.state == CutterStatus::State::kActive ? st.step + ": " + st.message : st.message;
   Publish(runtime_.bus(), options_.status_channel, m);
-  last_status_ = now;
+  last_status_at_ = now;
+  last_status_ = m;
 }
 
 void CutterNode::Tick(int64_t now) {
@@ -128,7 +157,7 @@ void CutterNode::Tick(int64_t now) {
     PublishStatus(now);
   } else if (cutter_.active()) {
     if (st.step != last_step_) runtime_.SetStatus(heartbeat_t::OK, "cutting: " + st.step);
-    if (now - last_status_ >= 1'000'000) PublishStatus(now);
+    if (now - last_status_at_ >= 1'000'000) PublishStatus(now);
   }
   last_step_ = st.step;
 }

@@ -1,11 +1,17 @@
 #pragma once
 // cutter as a node: the sump-shear cycle of tracker/cutter.h on the bus.
 //
-// The cut task arrives on CUT_TASK as a cutter_command_t: action SUMP starts a box cut
-// `sump_depth` m deep into the face line face_x1..y2 (map frame; both points equal, e.g. all
-// zero = find the face in CONTOUR_MAP straight ahead of the vehicle); action STOP cancels the
-// cut under way; the message's seq is the task id reported on TASK_STATUS. (CUTTER_COMMAND
-// itself is what the cutter sends the vehicle's appendages, so the task has its own channel.)
+// The cut task arrives on CUT_TASK as a cutter_command_t: action SUMP starts a cut
+// `sump_depth` m deep into the face line face_x1..y2 (map frame; a box cut into a whole face,
+// or a slab cut into the part of a face beside a box cut; both points equal, e.g. all zero =
+// find the face in CONTOUR_MAP straight ahead of the vehicle); action STOP with the seq of
+// the cut under way cancels it (TASK_STATUS CANCELED "canceled by the sender"); the
+// message's seq is the task id reported on TASK_STATUS. (CUTTER_COMMAND itself is what the
+// cutter sends the vehicle's appendages, so the task has its own channel.)
+//
+// Repeat-safe (a coordinator re-sends each task until acknowledged): a SUMP or STOP whose
+// seq is that of the cut under way or of the last one (ended, refused or canceled) changes
+// nothing and is answered with that cut's latest TASK_STATUS, re-published.
 //
 // Subscribes CUT_TASK, POSE (pose_estimate_t; unconverged estimates are ignored), ODOMETRY
 // (the prediction between estimates), CUTTER_STATE and CONTOUR_MAP; publishes DRIVE_COMMAND
@@ -21,7 +27,9 @@
 
 #include "common/config.h"
 #include "common/node/node_runtime.h"
+#include "minenav/task_status_t.hpp"
 #include "tracker/cutter.h"
+#include "tracker/cutter_messages.h"
 
 namespace minenav {
 
@@ -49,7 +57,10 @@ class CutterNode {
 
  private:
   void Tick(int64_t now);
+  void OnTask(const CutterCommand& task, int64_t now);
   void PublishStatus(int64_t now);
+  // The latest TASK_STATUS again, stamped now (the acknowledgement of a repeated task).
+  void Republish(int64_t now);
 
   NodeRuntime& runtime_;
   CutterNodeOptions options_;
@@ -57,7 +68,8 @@ class CutterNode {
   std::optional<StampedPose> pose_;
   std::optional<CutterState> state_;
   std::vector<Segment> map_;
-  int64_t last_status_ = 0;
+  int64_t last_status_at_ = 0;
+  std::optional<task_status_t> last_status_;  // of the cut under way or the last one
   std::string last_step_;
 };
 

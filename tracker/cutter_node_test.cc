@@ -53,6 +53,14 @@ struct Harness {
     m.action = action;
     bus->InjectMessage("CUT_TASK", m);
   }
+  // The vehicle at `at` with its boom up, then the task `seq` (a 1 m cut into `face`).
+  void Submit(int64_t seq, const Pose2& at, const Segment& face) {
+    Pose(at);
+    State(2.4, false);
+    Tick();
+    Task(seq, 1.0, face);
+    Tick();
+  }
   ManualClock clock{kT0};
   FakeRuntime fake{clock, 1.0, "cutter"};
   FakeBus* bus = &fake.bus();
@@ -62,11 +70,7 @@ struct Harness {
 
 TEST(CutterNodeTest, ACutWithoutAFaceInReachFailsWithItsReasonAndNothingMoves) {
   Harness h;
-  h.Pose(Pose2(0, 0, 0));
-  h.State(2.4, false);
-  h.Tick();
-  h.Task(7, 1.0, Segment(16, -3, 16, 3));
-  h.Tick();
+  h.Submit(7, Pose2(0, 0, 0), Segment(16, -3, 16, 3));
   h.Tick();
   const auto status = h.bus->Decoded<task_status_t>("TASK_STATUS");
   ASSERT_EQ(status.size(), 1u);
@@ -109,19 +113,81 @@ TEST(CutterNodeTest, AnAcceptedCutRaisesTheBoomThenSquaresUp) {
   const auto drives = h.bus->Decoded<drive_command_t>("DRIVE_COMMAND");
   ASSERT_GE(drives.size(), 2u);
   EXPECT_EQ(drives.back().mode, drive_command_t::TURN_IN_PLACE);
-  // A STOP on the task channel cancels: one last STOP, the drum told to stop, FAILED.
+  // A STOP on the task channel with the cut's seq cancels: one last STOP, the drum told to
+  // stop, CANCELED.
   h.Task(9, 0.0, std::nullopt, cutter_command_t::STOP);
   h.Tick();  // the cancel arrives
   h.Tick();  // the last word
   EXPECT_EQ(h.bus->Decoded<drive_command_t>("DRIVE_COMMAND").back().mode, drive_command_t::STOP);
   EXPECT_EQ(h.bus->Decoded<cutter_command_t>("CUTTER_COMMAND").back().action, cutter_command_t::STOP);
   status = h.bus->Decoded<task_status_t>("TASK_STATUS");
-  EXPECT_EQ(status.back().state, task_status_t::FAILED);
-  EXPECT_EQ(status.back().message, "canceled by the task channel");
+  EXPECT_EQ(status.back().state, task_status_t::CANCELED);
+  EXPECT_EQ(status.back().message, "canceled by the sender");
   const size_t n = h.bus->PublishedOn("DRIVE_COMMAND").size();
   h.Tick();
   h.Tick();
   EXPECT_EQ(h.bus->PublishedOn("DRIVE_COMMAND").size(), n);  // silent when no cut is active
+}
+
+// The coordinator re-sends each task until it is acknowledged: a repeat of the cut under way
+// re-publishes its status and does not restart it; a STOP of another task is not this cut's;
+// the repeats of a canceled (or refused) cut re-publish how it ended and start nothing.
+TEST(CutterNodeTest, RepeatedTasksAreAcknowledgedNotRestarted) {
+  Harness h;
+  h.Submit(21, Pose2(10, 0, 0.05), Segment(16, -3, 16, 3));
+  h.State(2.4, false);
+  h.Pose(Pose2(10, 0, 0.05));
+  for (int k = 0; k < 4; ++k) h.Tick();
+  ASSERT_EQ(h.node.cutter().status().step, "squaring up");
+  const size_t boom_commands = h.bus->PublishedOn("CUTTER_COMMAND").size();
+  const size_t statuses = h.bus->PublishedOn("TASK_STATUS").size();
+  h.Task(21, 1.0, Segment(16, -3, 16, 3));  // the repeat
+  h.Tick();
+  auto status = h.bus->Decoded<task_status_t>("TASK_STATUS");
+  ASSERT_EQ(status.size(), statuses + 1);
+  EXPECT_EQ(status.back().task_id, 21);
+  EXPECT_EQ(status.back().state, task_status_t::ACTIVE);
+  EXPECT_EQ(h.node.cutter().status().step, "squaring up") << "not restarted (it would raise the boom first)";
+  EXPECT_EQ(h.bus->PublishedOn("CUTTER_COMMAND").size(), boom_commands);
+  EXPECT_EQ(h.bus->Decoded<drive_command_t>("DRIVE_COMMAND").back().mode, drive_command_t::TURN_IN_PLACE);
+  // A STOP of another task: not this cut's.
+  h.Task(20, 0.0, std::nullopt, cutter_command_t::STOP);
+  h.Tick();
+  EXPECT_TRUE(h.node.cutter().active());
+  EXPECT_EQ(h.bus->Decoded<drive_command_t>("DRIVE_COMMAND").back().mode, drive_command_t::TURN_IN_PLACE);
+  // Its own STOP cancels; the STOP and the task repeated re-publish CANCELED, nothing moves.
+  h.Task(21, 0.0, std::nullopt, cutter_command_t::STOP);
+  h.Tick();
+  h.Tick();
+  EXPECT_EQ(h.bus->Decoded<task_status_t>("TASK_STATUS").back().state, task_status_t::CANCELED);
+  const size_t drives = h.bus->PublishedOn("DRIVE_COMMAND").size();
+  const size_t before = h.bus->PublishedOn("TASK_STATUS").size();
+  h.Task(21, 0.0, std::nullopt, cutter_command_t::STOP);
+  h.Tick();
+  h.Task(21, 1.0, Segment(16, -3, 16, 3));
+  h.Tick();
+  h.Tick();
+  status = h.bus->Decoded<task_status_t>("TASK_STATUS");
+  ASSERT_EQ(status.size(), before + 2);
+  for (size_t k = before; k < status.size(); ++k) {
+    EXPECT_EQ(status[k].task_id, 21);
+    EXPECT_EQ(status[k].state, task_status_t::CANCELED);
+    EXPECT_EQ(status[k].message, "canceled by the sender");
+  }
+  EXPECT_FALSE(h.node.cutter().active());
+  EXPECT_EQ(h.bus->PublishedOn("DRIVE_COMMAND").size(), drives) << "nothing moves";
+  // A refused task repeated: the refusal again, not a second try.
+  h.Task(22, 1.0, Segment(30, -3, 30, 3));
+  h.Tick();
+  h.Pose(Pose2(23, 0, 0));  // the face would now be in reach: still the first answer
+  h.Task(22, 1.0, Segment(30, -3, 30, 3));
+  h.Tick();
+  status = h.bus->Decoded<task_status_t>("TASK_STATUS");
+  ASSERT_GE(status.size(), 2u);
+  EXPECT_EQ(status.back().task_id, 22);
+  EXPECT_EQ(status.back().state, task_status_t::FAILED);
+  EXPECT_EQ(status.back().message, status[status.size() - 2].message);
+  EXPECT_FALSE(h.node.cutter().active());
 }
 
 TEST(CutterNodeTest, MalformedTasksAndStatesAreCountedBad) {

@@ -6,6 +6,10 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
+#include "common/angle.h"
+
 namespace minenav {
 namespace {
 
@@ -59,6 +63,38 @@ TEST(CutterTest, RefusesACutWithoutAFaceInReachOrAPose) {
             "refused: the depth of cut must be positive");
   EXPECT_FALSE(c.active());
   EXPECT_FALSE(c.Update(kT0, pose, StateAt(kT0, 2.4, false)).drive);  // no cut, no drive command
+}
+
+// A slab cut (thesis 6.2.1): the face given is the part left beside a box cut, across only
+// part of the drum (the vehicle's centre is not in front of it); its line gives the normal
+// to square up to and the depth is measured from it.
+TEST(CutterTest, TakesAFaceAcrossPartOfTheDrumAndSquaresUpToItsLine) {
+  Cutter c{CutterOptions{}};  // drum 3.3 m wide: y in [-2.95, 0.35] at y = -1.3
+  const StampedPose pose{kT0, Pose2(9, -1.3, 0.03)};
+  ASSERT_EQ(c.Start({1, 1.0, Segment(16, -3, 16, -1.45)}, pose, {}, kT0), "");
+  EXPECT_NEAR(c.DepthAt(Pose2(11, -1.3, 0)), 0.0, 1e-12);
+  EXPECT_NEAR(c.DepthAt(Pose2(12, 0, 0)), 1.0, 1e-12);
+  // A face line turned 5 deg: the heading to square up to is its normal.
+  Cutter skew{CutterOptions{}};
+  const Eigen::Vector2d dir(-std::sin(DegToRad(5.0)), std::cos(DegToRad(5.0)));
+  const Eigen::Vector2d on(16, -2.2);
+  ASSERT_EQ(skew.Start({2, 1.0, Segment(on - 0.8 * dir, on + 0.8 * dir)}, pose, {}, kT0), "");
+  int64_t t = kT0;
+  Cutter::Output out;
+  for (int k = 0; k < 3; ++k) {
+    t += 100'000;
+    out = skew.Update(t, StampedPose{t, Pose2(9, -1.3, 0.03)}, StateAt(t, 2.4, false));
+  }
+  ASSERT_EQ(skew.status().step, "squaring up");
+  EXPECT_GT(out.drive->omega, 0.0) << "towards 5 deg from 1.7 deg";
+  for (int k = 0; k < 2; ++k) {
+    t += 100'000;
+    out = skew.Update(t, StampedPose{t, Pose2(9, -1.3, DegToRad(5.0))}, StateAt(t, 2.4, false));
+  }
+  EXPECT_EQ(skew.status().step, "approaching the face");
+  // Beside the drum, not across it: refused.
+  EXPECT_EQ(c.Start({3, 1.0, Segment(16, -3, 16, -2.96)}, StampedPose{kT0, Pose2(9, -1.3, 0)}, {}, kT0),
+            "refused: no face in reach: the face line does not lie ahead of the vehicle");
 }
 
 TEST(CutterTest, SquaresUpByTurningInPlaceThenTramsToTheFace) {

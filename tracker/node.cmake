@@ -1,12 +1,4 @@
 # The processes: thin mains over their nodes (LCM) over minenav_tracker.
-minenav_node_library(minenav_waypoint_driver_node waypoint_driver_node.cc)
-target_link_libraries(minenav_waypoint_driver_node PUBLIC minenav_tracker minenav_node)
-
-minenav_executable(waypoint_driver waypoint_driver_main.cc)
-target_link_libraries(waypoint_driver PRIVATE minenav_waypoint_driver_node)
-
-minenav_test(NAME waypoint_driver_node_test SOURCES waypoint_driver_node_test.cc LIBS minenav_waypoint_driver_node)
-
 minenav_node_library(minenav_path_tracker_node path_tracker_node.cc)
 target_link_libraries(minenav_path_tracker_node PUBLIC minenav_tracker minenav_path_message minenav_node)
 

@@ -155,9 +155,9 @@ PathTracker::PathTracker(PathTrackerOptions options, Footprint footprint)
 
 void PathTracker::SetMap(std::shared_ptr<const TrackerMap> map) { map_ = std::move(map); }
 
-TrackState PathTracker::SetPath(const PlannedPath& path) {
+TrackState PathTracker::SetPath(const PlannedPath& path, const std::vector<double>& speed_limits) {
   path_ = path;
-  runs_ = SplitIntoRuns(path, options_.sample_step);
+  runs_ = SplitIntoRuns(path, options_.sample_step, speed_limits);
   run_ = 0;
   hint_ = 0;
   correcting_ = aligning_goal_ = false;
@@ -233,11 +233,13 @@ std::optional<TrackStep> PathTracker::CheckAhead(const Pose2& pose, const TrackS
     piece.end = PoseAfter(pose, piece.motion, piece.amount, piece.radius);
   if (!map_->PieceCollides(pose, piece)) return std::nullopt;
   if (step.command.mode == DriveCommand::Mode::kVelocity) {
-    // The commanded motion would touch a wall: the other motions of the same direction
-    // (straight, arc left, arc right; the nearest the pursuit curvature first) over the same
-    // distance, then all of them over half of it, a quarter, ... down to
-    // collision_min_distance, driven slower so that collision_time covers only the distance
-    // found free. The next tick corrects again.
+    // The commanded motion would touch a wall: the motions of the same direction (straight,
+    // arc left, arc right), the nearest the pursuit curvature first, each over the distance
+    // checked, then half of it, a quarter, ... down to the least (collision_min_distance, or
+    // the stopping distance), driven slower so that collision_time covers only the distance
+    // found free. The next tick corrects again. The pursuit's own motion, shortened and
+    // slower, comes before another motion at speed: near a wall the tracker keeps converging
+    // on the path (slowly) rather than keeping a lateral error it can never take out there.
     const int d = DriveDirection(piece.motion);
     const double speed = std::abs(step.command.v);
     const double commanded = speed > 0.0 ? step.command.omega / speed : 0.0;
@@ -248,8 +250,9 @@ std::optional<TrackStep> PathTracker::CheckAhead(const Pose2& pose, const TrackS
     const double full = piece.amount;
     // Never shorter than the vehicle needs to stop from the last commanded speed.
     const double least = std::max(options_.collision_min_distance, StoppingDistance() + kDriveOvershoot);
-    for (double distance = full;; distance = std::max(least, 0.5 * distance)) {
-      for (const double k : curvatures) {
+    for (const double k : curvatures) {
+      for (double distance = full, last = full + 1.0; distance < last;
+           last = distance, distance = std::max(least, 0.5 * distance)) {
         if (distance == full && k == commanded) continue;  // checked above
         MotionPiece other = piece;
         other.motion = MotionOf(d, k);
@@ -265,7 +268,6 @@ std::optional<TrackStep> PathTracker::CheckAhead(const Pose2& pose, const TrackS
         s.message = what + " would touch the map: " + ToString(other.motion) + " " + Fixed(distance) + " m instead";
         return s;
       }
-      if (distance <= least) break;
     }
   }
   return Finish(TrackState::kBlocked, "blocked: " + what + " from " + Fixed(pose.x) + ", " + Fixed(pose.y) +
@@ -403,6 +405,9 @@ TrackStep PathTracker::Drive(const Pose2& pose) {
   } else {
     s.motion = QuantiseCurvature(k, options_.straight_deadband, options_.turn_in_place_curvature);
     double speed = options_.cruise_speed;
+    // The path's own speed limits, over what the vehicle reaches before it could stop.
+    const double ahead = std::max(lookahead, StoppingDistance() + options_.cruise_speed * options_.command_timeout);
+    if (const double limit = SpeedLimitAhead(run, p.index, ahead); limit > 0.0) speed = std::min(speed, limit);
     const double curvature = s.motion == QuantisedMotion::kArcLeft    ? 1.0 / options_.turn_radius
                              : s.motion == QuantisedMotion::kArcRight ? -1.0 / options_.turn_radius
                                                                       : 0.0;

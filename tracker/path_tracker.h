@@ -123,8 +123,10 @@ class PathTracker {
   PathTracker(PathTrackerOptions options, Footprint footprint);
 
   // A new path replaces the current one. With a map, a path whose pieces collide with it is
-  // refused at once (state blocked, the piece named). Returns the step's state afterwards.
-  TrackState SetPath(const PlannedPath& path);
+  // refused at once (state blocked, the piece named). speed_limits: m/s per piece (path_t's
+  // segment speed; 0 = none), or empty: the tracker never drives faster than the limit of the
+  // stretch from the vehicle to its goal point and its stopping distance. Returns the state.
+  TrackState SetPath(const PlannedPath& path, const std::vector<double>& speed_limits = {});
   // Replaces the map (nullptr: none; then nothing is collision-checked).
   void SetMap(std::shared_ptr<const TrackerMap> map);
   // Forgets the path (the vehicle stops).

@@ -4,13 +4,15 @@
 // cross-track error and the final pose within the targets (RMS <= 5 cm, max <= 15 cm,
 // final <= 5 cm and 1 deg), no contact with the true walls (brute force), and the safe
 // reactions: a wall the map shows late stops the miner short of it, a pose jump is reported
-// and not obeyed.
+// and not obeyed. Then a few maneuvers with the pose from the live contour mapper on
+// simulated scans, within the same targets.
 
 #include "tracker/testing/closed_loop.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <map>
 #include <ostream>
 
@@ -54,6 +56,48 @@ INSTANTIATE_TEST_SUITE_P(Maneuvers, ClosedLoopTest,
                          ::testing::Combine(::testing::Values("straight_entry", "box_cut", "slab_cut",
                                                               "intersection_turn"),
                                             ::testing::Values(1.0, 0.5, 0.2)),
+                         [](const auto& param_info) {
+                           return std::get<0>(param_info.param) + "_" +
+                                  std::to_string(static_cast<int>(std::get<1>(param_info.param) * 10)) + "dHz";
+                         });
+
+// The same targets with the pose from the LIVE contour mapper (testing/mapper_pose_source.h):
+// Typhoon scans of the true world from the true pose, mapped with the drifting odometry
+// (insert every metre or 0.3 rad, track the others) after a short survey along the path,
+// each estimate out when its computation is done (a fixed 0.5 s per scan here, so that the
+// run does not depend on the machine; tracker_bench measures it); the tracker's map is the
+// mapper's. Two maneuvers at the miner's cruise, the box cut and the slab cut (reversals and
+// turns in place beside the walls), kept few because the mapper's time dominates (the turn at
+// the crossing took 9 s of CPU in release and over 2 min under the sanitizers); tracker_bench
+// runs the whole grid.
+class ClosedLoopLiveMapperTest : public ::testing::TestWithParam<std::tuple<std::string, double>> {};
+
+TEST_P(ClosedLoopLiveMapperTest, TracksWithinTheTargetsOnTheMappersPose) {
+  const auto& [name, rate] = GetParam();
+  const TrackingScenario& s = Scenario(name);
+  ASSERT_EQ(s.error, "");
+  ClosedLoopOptions o;
+  o.pose_source = PoseSource::kLiveMapper;
+  o.mapper.compute_time = 0.5;  // s per scan, fixed: the run does not depend on the machine
+  o.survey = SurveyPoses(s.path, 8.0);
+  o.pose_rate = rate;
+  const ClosedLoopResult r = RunClosedLoop(s.world, {}, s.path, Footprint::Rectangle(3.3, 10.0), o);
+  const std::string what = name + " at " + std::to_string(rate) + " Hz on the live mapper";
+  ExpectOnTarget(r, what);
+  std::printf("%s: cross-track RMS %.2f cm, max %.2f cm, end %.2f cm %.2f deg; %d estimates (%d inserted, %d "
+              "tracked, %d refused), error RMS %.2f cm, latency median %.3f s, max %.3f s\n",
+              what.c_str(), 100 * r.cross_track_rms, 100 * r.cross_track_max, 100 * r.final_position_error,
+              RadToDeg(r.final_heading_error), r.estimates, r.scans_inserted, r.scans_tracked, r.scans_refused,
+              100 * r.estimate_error_rms, r.latency_median, r.latency_max);
+  // The tracker drove on the mapper's estimates: one per scan, used, none a jump.
+  EXPECT_GE(r.estimates, static_cast<int>(r.time * rate) - 1);
+  EXPECT_GE(r.trusted * 10, r.estimates * 9) << r.trusted << " of " << r.estimates;
+  EXPECT_LE(r.jumps * 100, std::max(1, r.estimates)) << r.jumps << " of " << r.estimates;
+  EXPECT_GT(r.map_updates, 1) << "the tracker's map followed the mapper's inserts";
+}
+
+INSTANTIATE_TEST_SUITE_P(Maneuvers, ClosedLoopLiveMapperTest,
+                         ::testing::Values(std::make_tuple("box_cut", 1.0), std::make_tuple("slab_cut", 0.2)),
                          [](const auto& param_info) {
                            return std::get<0>(param_info.param) + "_" +
                                   std::to_string(static_cast<int>(std::get<1>(param_info.param) * 10)) + "dHz";

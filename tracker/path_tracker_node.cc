@@ -30,6 +30,18 @@ std::string Seconds(double s) {
 
 double Age(int64_t now, int64_t then) { return static_cast<double>(TimeGap(now, then)) * 1e-6; }
 
+bool SamePose(const pose2d_t& a, const pose2d_t& b) { return a.x == b.x && a.y == b.y && a.theta == b.theta; }
+
+// The same path (start and pieces, exactly as sent), whatever its stamp and status: a repeat.
+bool SamePath(const path_t& a, const path_t& b) {
+  if (a.feasible != b.feasible || a.num_segments != b.num_segments || !SamePose(a.start, b.start)) return false;
+  for (size_t k = 0; k < a.segments.size() && k < b.segments.size(); ++k) {
+    const path_segment_t &x = a.segments[k], &y = b.segments[k];
+    if (x.motion != y.motion || !SamePose(x.end, y.end) || x.radius != y.radius || x.speed != y.speed) return false;
+  }
+  return a.segments.size() == b.segments.size();
+}
+
 }  // namespace
 
 void DeclareOptions(ConfigSchema& s, PathTrackerNodeOptions& o) {
@@ -88,6 +100,12 @@ PathTrackerNode::PathTrackerNode(NodeRuntime& runtime, PathTrackerNodeOptions op
                              [this](const pose_estimate_t& m) { Report(predictor_.AddEstimate(FromLcm(m))); });
   Subscribe<path_t>(bus, options_.path_channel, [this](const path_t& m) {
     const int64_t now = runtime_.NowUtime();
+    if (last_status_ && m.request_id == last_status_->task_id) {
+      // A repeat (or a cancel) of the active or last finished request; only a different path
+      // for the active request goes on: the planner's replan (same request_id, new path).
+      const bool active = request_id_ && *request_id_ == m.request_id;
+      if (!active || !m.feasible || (active_path_ && SamePath(m, *active_path_))) return Repeated(m, now);
+    }
     PathMessage p;
     try {
       p = PathFromLcm(m, options_.tracker.turn_radius);
@@ -106,30 +124,52 @@ PathTrackerNode::PathTrackerNode(NodeRuntime& runtime, PathTrackerNodeOptions op
     }
     if (request_id_ && *request_id_ != p.request_id)
       PublishStatus(now, task_status_t::CANCELED, 0.0f, "replaced by the path of request " + std::to_string(p.request_id));
+    const bool replanned = request_id_ && *request_id_ == p.request_id;
     request_id_ = p.request_id;
     path_utime_ = p.utime;
-    const TrackState s = tracker_.SetPath(p.path);
-    MINENAV_LOG(kInfo) << "path of request " << p.request_id << ": " << tracker_.message();
+    progress_ = 0.0f;
+    active_path_ = m;
+    const TrackState s = tracker_.SetPath(p.path, p.speeds);
+    MINENAV_LOG(kInfo) << (replanned ? "replanned path" : "path") << " of request " << p.request_id << ": "
+                       << tracker_.message();
     if (s == TrackState::kActive) {
-      PublishStatus(now, task_status_t::ACTIVE, 0.0f, tracker_.message());
+      PublishStatus(now, task_status_t::ACTIVE, 0.0f, (replanned ? "replanned path taken: " : "") + tracker_.message());
     } else {
       PublishStatus(now, task_status_t::FAILED, 0.0f, tracker_.message());
       request_id_.reset();
     }
   });
+  map_worker_ = std::make_unique<BackgroundWorker<MapJob, BuiltMap>>(1, [this](MapJob& job) {
+    BuiltMap b;
+    b.map = std::make_shared<TrackerMap>(job.segments, footprint_, options_.tracker.collision_margin,
+                                         options_.tracker.turn_radius);
+    b.what = std::move(job.what);
+    b.segments = job.segments.size();
+    return b;
+  });
   maps_ = std::make_unique<MapUpdates>(
       bus, options_.line_map_channel, options_.map_channel,
       [this](const std::vector<Segment>& segments, const std::string& what) {
-        auto map = std::make_shared<TrackerMap>(segments, footprint_, options_.tracker.collision_margin,
-                                                options_.tracker.turn_radius);
-        if (!map->error().empty()) {
-          MINENAV_LOG(kWarn) << what << ": not used (" << map->error() << ")";
-          return;
-        }
-        MINENAV_LOG(kInfo) << what << ": " << segments.size() << " segments to check the motion against";
-        tracker_.SetMap(std::move(map));
+        if (const std::optional<MapJob> dropped = map_worker_->Push({segments, what}))
+          MINENAV_LOG(kDebug) << dropped->what << ": replaced by a newer map before it was built";
       });
   runtime_.AddTimer(1.0 / options_.rate, [this](int64_t now) { Tick(now); });
+}
+
+PathTrackerNode::~PathTrackerNode() { map_worker_->Stop(); }
+
+void PathTrackerNode::TakeMaps() {
+  std::vector<BuiltMap> built = map_worker_->TakeOutbox();
+  for (auto it = built.rbegin(); it != built.rend(); ++it) {  // the newest usable one
+    if (!it->map->error().empty()) {
+      MINENAV_LOG(kWarn) << it->what << ": not used (" << it->map->error() << ")";
+      continue;
+    }
+    MINENAV_LOG(kInfo) << it->what << ": " << it->segments << " segments to check the motion against";
+    tracker_.SetMap(std::move(it->map));
+    ++maps_applied_;
+    return;
+  }
 }
 
 void PathTrackerNode::Report(const EstimateVerdict& v) {
@@ -142,6 +182,25 @@ void PathTrackerNode::Report(const EstimateVerdict& v) {
   }
 }
 
+void PathTrackerNode::Repeated(const path_t& m, int64_t now) {
+  if (!m.feasible && request_id_ && *request_id_ == m.request_id) {
+    const std::string why = "canceled by the sender";
+    tracker_.Cancel(why);
+    MINENAV_LOG(kInfo) << "path " << m.request_id << ": " << why;
+    PublishStatus(now, task_status_t::CANCELED, progress_, why);
+    request_id_.reset();
+    stopped_because_.clear();
+    return;
+  }
+  // The same request again (the sender repeats until acknowledged): nothing changes; its
+  // latest status, stamped now, is the acknowledgement.
+  MINENAV_LOG(kDebug) << options_.path_channel << ": request " << m.request_id << " repeated: status re-published";
+  task_status_t s = *last_status_;
+  s.utime = now;
+  if (request_id_ && *request_id_ == s.task_id) s.progress = progress_;
+  Publish(runtime_.bus(), options_.status_channel, s);
+}
+
 void PathTrackerNode::PublishStatus(int64_t now, int8_t state, float progress, const std::string& message) {
   task_status_t m{};
   m.utime = now;
@@ -151,6 +210,7 @@ void PathTrackerNode::PublishStatus(int64_t now, int8_t state, float progress, c
   m.progress = progress;
   m.message = message;
   Publish(runtime_.bus(), options_.status_channel, m);
+  last_status_ = m;
 }
 
 std::string PathTrackerNode::Staleness(int64_t now) const {
@@ -168,6 +228,7 @@ std::string PathTrackerNode::Staleness(int64_t now) const {
 }
 
 void PathTrackerNode::Tick(int64_t now) {
+  TakeMaps();
   DriveCommand command;
   command.timeout = options_.tracker.command_timeout;
   std::string heartbeat;
@@ -198,6 +259,7 @@ void PathTrackerNode::Tick(int64_t now) {
       }
       const TrackStep step = tracker_.Update(*predictor_.Predict());
       command = step.command;
+      progress_ = static_cast<float>(step.progress);
       heartbeat = "path " + std::to_string(*request_id_) + ": " + step.message;
       if (step.finished_now) {
         const bool done = step.state == TrackState::kDone;

@@ -6,6 +6,15 @@
 // abandoned or blocked, and when the watchdog stops or releases the vehicle, and HEARTBEAT.
 // It never reads SIM_TRUTH.
 //
+// Repeat-safe (a coordinator re-sends each path on DRIVE_PATH until acknowledged): a path_t
+// whose request_id is the active path's with the same path (start and pieces; its stamp and
+// status may differ), or the last finished one's, changes nothing and is answered by
+// re-publishing that path's latest TASK_STATUS; feasible = false with the active request_id
+// cancels it (STOP, TASK_STATUS CANCELED "canceled by the sender"). A different path with the
+// active request_id is the planner's replan (path_planner publishes it with the same id): it
+// replaces the active path. A path of another request replaces the active one (CANCELED
+// "replaced by ...").
+//
 // The pose it steers by is PosePredictor's: the latest trusted estimate composed with the
 // odometry since. Watchdog, checked every tick while a path is active:
 //   * no trusted estimate for pose_timeout s (by the estimates' scan stamps), or no odometry
@@ -13,6 +22,10 @@
 //     the same line; the path resumes when both are fresh again ("resumed");
 //   * the path older than path_max_age s (its utime): abandoned, TASK_STATUS FAILED.
 // The tick runs at --rate (10 Hz: at most 100 ms after a limit passes, the STOP is out).
+// A new map (CONTOUR_MAP, or the line map) is turned into the tracker's collision map
+// (TrackerMap: the planner's checker and a segment index) on a BackgroundWorker, so the
+// control tick never waits for a large map; the tick takes the newest one built (a map that
+// arrives while another is built replaces the one waiting).
 
 #include <cstdint>
 #include <memory>
@@ -20,8 +33,11 @@
 #include <string>
 
 #include "common/config.h"
+#include "common/node/background_worker.h"
 #include "common/node/map_updates.h"
 #include "common/node/node_runtime.h"
+#include "minenav/path_t.hpp"
+#include "minenav/task_status_t.hpp"
 #include "planner/footprint.h"
 #include "tracker/path_tracker.h"
 #include "tracker/pose_predictor.h"
@@ -55,15 +71,22 @@ class PathTrackerNode {
  public:
   // Subscribes and adds the control timer (call after runtime.Start()).
   PathTrackerNode(NodeRuntime& runtime, PathTrackerNodeOptions options, Footprint footprint);
+  ~PathTrackerNode();
   int Run() { return runtime_.Run(); }
 
   const PathTracker& tracker() const { return tracker_; }
+  // Maps built on the worker and taken by the control tick so far.
+  int64_t maps_applied() const { return maps_applied_; }
 
  private:
   void Tick(int64_t now);
+  // The newest collision map the worker built, if any, into the tracker.
+  void TakeMaps();
   // Logs a verdict on an estimate; a jump also goes out on TASK_STATUS and HEARTBEAT.
   void Report(const EstimateVerdict& v);
   void PublishStatus(int64_t now, int8_t state, float progress, const std::string& message);
+  // A path_t of the active or last finished request: a cancel, or a repeat to acknowledge.
+  void Repeated(const path_t& m, int64_t now);
   // "" when pose and odometry are fresh, else why not.
   std::string Staleness(int64_t now) const;
 
@@ -74,10 +97,26 @@ class PathTrackerNode {
   PosePredictor predictor_;
   std::unique_ptr<MapUpdates> maps_;
   std::optional<int64_t> request_id_;  // the active path's
+  std::optional<task_status_t> last_status_;  // the latest of the active or last finished path
+  std::optional<path_t> active_path_;          // the message of the active (or last) path
+  float progress_ = 0.0f;              // of the active path, at the last tick
   int64_t path_utime_ = 0;
   std::string stopped_because_;         // the watchdog's reason while it holds the vehicle
   std::string last_report_;             // the latest pose report (jumps) for the heartbeat
   int64_t seq_ = 0;
+  int64_t maps_applied_ = 0;
+  struct MapJob {
+    std::vector<Segment> segments;
+    std::string what;
+  };
+  struct BuiltMap {
+    std::shared_ptr<TrackerMap> map;
+    std::string what;
+    size_t segments = 0;
+  };
+  // Builds collision maps off the node thread (reads options_ and footprint_ only, which do
+  // not change). Last: stopped and destroyed first.
+  std::unique_ptr<BackgroundWorker<MapJob, BuiltMap>> map_worker_;
 };
 
 }  // namespace minenav

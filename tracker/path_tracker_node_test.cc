@@ -7,6 +7,9 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
+#include <thread>
+
 #include "common/config_testing.h"
 #include "common/file_io.h"
 #include "common/node/contour_map_conversions.h"
@@ -52,6 +55,21 @@ struct Harness {
   }
   void Path(const PlannedPath& p, int64_t request_id) {
     bus->InjectMessage("PATH", PathToLcm(p, request_id, clock.NowUtime(), 0.076, "ok"));
+  }
+  // Ticks (real time passing for the map worker) until `n` maps were taken.
+  void WaitForMaps(int64_t n) {
+    for (int k = 0; k < 10000 && node.maps_applied() < n; ++k) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+      Step(100'000, Pose2(), false);
+    }
+    ASSERT_GE(node.maps_applied(), n) << "no map built";
+  }
+  // A pose at the origin and the path of request `id`, taken and driving after two ticks.
+  void Begin(const PlannedPath& p, int64_t id) {
+    Pose(Pose2(0, 0, 0), clock.NowUtime());
+    Path(p, id);
+    Step(100'000);
+    Step(100'000);
   }
   std::vector<task_status_t> Statuses() const { return bus->Decoded<task_status_t>("TASK_STATUS"); }
   drive_command_t LastCommand() const { return bus->Decoded<drive_command_t>("DRIVE_COMMAND").back(); }
@@ -138,10 +156,7 @@ TEST(PathTrackerNodeTest, AStalePoseStopsTheMinerWithin200msAndSaysWhy) {
 
 TEST(PathTrackerNodeTest, StaleOdometryStopsTheMinerWithin200ms) {
   Harness h;  // odometry_timeout 0.5 s
-  h.Pose(Pose2(0, 0, 0), h.clock.NowUtime());
-  h.Path(Straight(0, 20), 8);
-  h.Step(100'000);
-  h.Step(100'000);
+  h.Begin(Straight(0, 20), 8);
   ASSERT_EQ(h.LastCommand().mode, drive_command_t::VELOCITY);
   const int64_t last_odometry = h.clock.NowUtime();
   h.Step(20'000);  // the last reading, stamped last_odometry
@@ -189,6 +204,7 @@ TEST(PathTrackerNodeTest, RefusesAPathThroughAWallOfTheMapAndAMalformedPath) {
   map.contours.push_back({1, true, {{-8, -4}, {40, -4}, {40, 4}, {-8, 4}}});
   map.contours.push_back({2, false, {{12, -4}, {12, 4}}});  // across the way
   h.bus->InjectMessage("CONTOUR_MAP", ContourMapToLcm(map));
+  h.WaitForMaps(1);  // built on the worker, taken by a tick
   h.Pose(Pose2(0, 0, 0), h.clock.NowUtime());
   h.Step(100'000);
   h.Path(Straight(0, 20), 10);
@@ -212,10 +228,7 @@ TEST(PathTrackerNodeTest, RefusesAPathThroughAWallOfTheMapAndAMalformedPath) {
 
 TEST(PathTrackerNodeTest, APoseJumpIsReportedNotObeyed) {
   Harness h;
-  h.Pose(Pose2(0, 0, 0), h.clock.NowUtime());
-  h.Path(Straight(0, 20), 12);
-  h.Step(100'000);
-  h.Step(100'000);
+  h.Begin(Straight(0, 20), 12);
   h.Pose(Pose2(0, 2.0, 0), h.clock.NowUtime() - 100'000);  // 2 m sideways
   h.Step(100'000);
   const task_status_t s = h.Statuses().back();
@@ -223,6 +236,117 @@ TEST(PathTrackerNodeTest, APoseJumpIsReportedNotObeyed) {
   const drive_command_t c = h.LastCommand();
   EXPECT_EQ(c.mode, drive_command_t::VELOCITY) << "still on the prediction: straight on";
   EXPECT_DOUBLE_EQ(c.omega, 0.0);
+}
+
+// The coordinator re-sends each path until it is acknowledged (on DRIVE_PATH): a repeat of
+// the active request changes nothing and re-publishes its latest status; a repeat of a
+// finished one re-publishes its end (DONE) and never drives it again.
+TEST(PathTrackerNodeTest, ARepeatedPathIsAcknowledgedAndNotRestarted) {
+  PathTrackerNodeOptions o;
+  o.path_channel = "DRIVE_PATH";
+  Harness h(o);
+  // 2 m forward, then 1 m back: two runs.
+  PlannedPath p = Straight(0, 2);
+  p.pieces.push_back({Motion::kReverse, 1.0, 0.0, Pose2(1, 0, 0)});
+  h.Pose(Pose2(0, 0, 0), h.clock.NowUtime());
+  h.bus->InjectMessage("DRIVE_PATH", PathToLcm(p, 51, h.clock.NowUtime(), 0.076, "ok"));
+  h.Step(100'000);
+  h.Step(100'000);
+  h.Step(100'000, Pose2(2.0, 0, 0));  // the first run driven
+  h.Step(100'000, Pose2(2.0, 0, 0));
+  h.Step(100'000, Pose2(2.0, 0, 0));
+  ASSERT_EQ(h.node.tracker().run_index(), 1);
+  ASSERT_EQ(h.LastCommand().mode, drive_command_t::VELOCITY);
+  ASSERT_LT(h.LastCommand().v, 0.0) << "reversing the second run";
+  const task_status_t latest = h.Statuses().back();
+  const size_t statuses = h.Statuses().size();
+  h.bus->InjectMessage("DRIVE_PATH", PathToLcm(p, 51, h.clock.NowUtime(), 0.076, "ok"));  // the repeat
+  h.Step(100'000, Pose2(1.9, 0, 0));
+  ASSERT_EQ(h.Statuses().size(), statuses + 1);
+  const task_status_t ack = h.Statuses().back();
+  EXPECT_EQ(ack.task_id, 51);
+  EXPECT_EQ(ack.state, latest.state);
+  EXPECT_EQ(ack.message, latest.message);
+  EXPECT_GT(ack.progress, 0.5f) << "the progress of the path under way";
+  EXPECT_EQ(h.node.tracker().run_index(), 1) << "not restarted";
+  h.Step(100'000, Pose2(1.8, 0, 0));
+  EXPECT_LT(h.LastCommand().v, 0.0) << "still reversing";
+  // Done; the repeat after it re-publishes DONE and the miner stays put.
+  for (int k = 0; k < 5; ++k) h.Step(100'000, Pose2(1.0, 0, 0));
+  ASSERT_EQ(h.Statuses().back().state, task_status_t::DONE) << h.Statuses().back().message;
+  const task_status_t done = h.Statuses().back();
+  const size_t after_done = h.Statuses().size();
+  for (int k = 0; k < 3; ++k) {
+    h.bus->InjectMessage("DRIVE_PATH", PathToLcm(p, 51, h.clock.NowUtime(), 0.076, "ok"));
+    h.Step(100'000, Pose2(1.0, 0, 0));
+  }
+  ASSERT_EQ(h.Statuses().size(), after_done + 3);
+  for (size_t k = after_done; k < h.Statuses().size(); ++k) {
+    EXPECT_EQ(h.Statuses()[k].task_id, 51);
+    EXPECT_EQ(h.Statuses()[k].state, task_status_t::DONE);
+    EXPECT_EQ(h.Statuses()[k].message, done.message);
+  }
+  EXPECT_EQ(h.node.tracker().state(), TrackState::kDone);
+  EXPECT_EQ(h.LastCommand().mode, drive_command_t::STOP);
+}
+
+// path_planner replans the active path when the map blocks it and publishes the new path with
+// the same request_id: a different path of the active request is taken (not a repeat).
+TEST(PathTrackerNodeTest, AReplannedPathOfTheActiveRequestReplacesIt) {
+  Harness h;
+  h.Begin(Straight(0, 20), 71);
+  h.Step(100'000, Pose2(1.0, 0, 0));
+  const size_t n = h.Statuses().size();
+  h.Path(Straight(1, 3), 71);  // the replan: from where the vehicle is, to another end
+  h.Step(100'000, Pose2(1.0, 0, 0));
+  ASSERT_EQ(h.Statuses().size(), n + 1);
+  EXPECT_EQ(h.Statuses().back().task_id, 71);
+  EXPECT_EQ(h.Statuses().back().state, task_status_t::ACTIVE);
+  EXPECT_EQ(h.Statuses().back().message.rfind("replanned path taken", 0), 0u) << h.Statuses().back().message;
+  for (int k = 0; k < 4; ++k) h.Step(100'000, Pose2(3.0, 0, 0));
+  EXPECT_EQ(h.Statuses().back().state, task_status_t::DONE) << "the replanned path's end: " << h.Statuses().back().message;
+  EXPECT_EQ(h.Statuses().back().task_id, 71);
+}
+
+// feasible = false with the active request's id cancels it: STOP, CANCELED "canceled by the
+// sender"; its repeats (and a repeat of the path itself) only re-publish that; an infeasible
+// answer to another request does not touch the active path.
+TEST(PathTrackerNodeTest, AnInfeasiblePathOfTheActiveRequestCancelsIt) {
+  Harness h;
+  h.Begin(Straight(0, 20), 61);
+  ASSERT_EQ(h.LastCommand().mode, drive_command_t::VELOCITY);
+  h.bus->InjectMessage("PATH", NoPathToLcm(99, h.clock.NowUtime(), "no path"));  // another request's
+  h.Step(100'000);
+  h.Step(100'000);
+  EXPECT_EQ(h.LastCommand().mode, drive_command_t::VELOCITY);
+  EXPECT_EQ(h.Statuses().back().task_id, 61);
+  EXPECT_EQ(h.Statuses().back().state, task_status_t::ACTIVE);
+  h.bus->InjectMessage("PATH", NoPathToLcm(61, h.clock.NowUtime(), "cancel"));
+  h.Step(100'000);
+  h.Step(100'000);
+  EXPECT_EQ(h.LastCommand().mode, drive_command_t::STOP);
+  const task_status_t canceled = h.Statuses().back();
+  EXPECT_EQ(canceled.task_id, 61);
+  EXPECT_EQ(canceled.state, task_status_t::CANCELED);
+  EXPECT_EQ(canceled.message, "canceled by the sender");
+  const size_t n = h.Statuses().size();
+  h.bus->InjectMessage("PATH", NoPathToLcm(61, h.clock.NowUtime(), "cancel"));
+  h.Step(100'000);
+  h.Path(Straight(0, 20), 61);  // the path itself, late
+  h.Step(100'000);
+  h.Step(100'000);
+  ASSERT_EQ(h.Statuses().size(), n + 2);
+  for (size_t k = n; k < n + 2; ++k) {
+    EXPECT_EQ(h.Statuses()[k].state, task_status_t::CANCELED);
+    EXPECT_EQ(h.Statuses()[k].message, "canceled by the sender");
+  }
+  EXPECT_EQ(h.LastCommand().mode, drive_command_t::STOP);
+  // A new request drives again.
+  h.Path(Straight(0, 20), 62);
+  h.Step(100'000);
+  h.Step(100'000);
+  EXPECT_EQ(h.LastCommand().mode, drive_command_t::VELOCITY);
+  EXPECT_EQ(h.Statuses().back().task_id, 62);
 }
 
 TEST(PathMessageTest, AmountsComeBackFromThePoses) {
@@ -241,11 +365,16 @@ TEST(PathMessageTest, AmountsComeBackFromThePoses) {
   }
   const PathMessage back = PathFromLcm(PathToLcm(p, 5, kT0, 0.076, "ok"), 4.0);
   EXPECT_EQ(back.request_id, 5);
+  EXPECT_EQ(back.speeds, std::vector<double>(p.pieces.size(), 0.076));
   ASSERT_EQ(back.path.pieces.size(), p.pieces.size());
   for (size_t k = 0; k < p.pieces.size(); ++k) {
     EXPECT_EQ(back.path.pieces[k].motion, p.pieces[k].motion) << k;
     EXPECT_NEAR(back.path.pieces[k].amount, p.pieces[k].amount, 1e-5) << k;
   }
+  // A speed that is not a speed: refused, named.
+  path_t fast = PathToLcm(p, 6, kT0, 0.076, "ok");
+  fast.segments[2].speed = -1.0;
+  EXPECT_THROW(PathFromLcm(fast, 4.0), InputError);
   // A piece that cannot reach its end: refused, named.
   path_t bad = PathToLcm(p, 6, kT0, 0.076, "ok");
   bad.segments[1].end.y += 0.5;

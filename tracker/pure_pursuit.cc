@@ -11,23 +11,27 @@ namespace {
 
 Eigen::Vector2d Heading(double theta) { return {std::cos(theta), std::sin(theta)}; }
 
-// Appends the samples of a driving piece (from `from`) to `run`.
-void SamplePiece(const Pose2& from, const MotionPiece& piece, double step, TrackedRun& run) {
+// Appends the samples of a driving piece (from `from`, speed limit `limit`) to `run`.
+void SamplePiece(const Pose2& from, const MotionPiece& piece, double step, double limit, TrackedRun& run) {
   const int n = std::max(1, static_cast<int>(std::ceil(piece.amount / step)));
   const double s0 = run.arc_length.back();
   for (int i = 1; i <= n; ++i) {
     const double s = piece.amount * static_cast<double>(i) / n;
     run.samples.push_back(i == n ? piece.end : PoseAfter(from, piece.motion, s, piece.radius));
     run.arc_length.push_back(s0 + s);
+    run.speed_limit.push_back(limit);
   }
 }
 
 }  // namespace
 
-std::vector<TrackedRun> SplitIntoRuns(const PlannedPath& path, double sample_step) {
+std::vector<TrackedRun> SplitIntoRuns(const PlannedPath& path, double sample_step,
+                                      const std::vector<double>& speed_limits) {
   std::vector<TrackedRun> runs;
   Pose2 at = path.start;
-  for (const MotionPiece& piece : path.pieces) {
+  for (size_t k = 0; k < path.pieces.size(); ++k) {
+    const MotionPiece& piece = path.pieces[k];
+    const double limit = k < speed_limits.size() && speed_limits[k] > 0.0 ? speed_limits[k] : 0.0;
     if (!(piece.amount != 0.0)) {
       at = piece.end;
       continue;
@@ -44,16 +48,29 @@ std::vector<TrackedRun> SplitIntoRuns(const PlannedPath& path, double sample_ste
       if (d != 0) {
         r.samples.push_back(at);
         r.arc_length.push_back(0.0);
+        r.speed_limit.push_back(limit);
       }
       runs.push_back(std::move(r));
     }
     TrackedRun& run = runs.back();
-    if (d != 0) SamplePiece(at, piece, sample_step, run);
+    if (d != 0) SamplePiece(at, piece, sample_step, limit, run);
     run.end = piece.end;
     run.length = d != 0 ? run.arc_length.back() : 0.0;
     at = piece.end;
   }
   return runs;
+}
+
+double SpeedLimitAhead(const TrackedRun& run, int index, double distance) {
+  double least = 0.0;
+  const size_t n = run.samples.size();
+  if (n == 0) return least;
+  const size_t first = static_cast<size_t>(std::clamp(index, 0, static_cast<int>(n) - 1));
+  for (size_t i = first; i < n && run.arc_length[i] <= run.arc_length[first] + distance; ++i) {
+    const double limit = run.speed_limit[i];
+    if (limit > 0.0 && (least == 0.0 || limit < least)) least = limit;
+  }
+  return least;
 }
 
 RunProjection ProjectOnRun(const TrackedRun& run, const Eigen::Vector2d& position, int hint, double window) {

@@ -29,12 +29,18 @@ struct TrackedRun {
   int direction = 0;              // +1 forward, -1 reverse, 0 turn in place
   std::vector<Pose2> samples;     // direction != 0: poses along the run, the first its start, the last `end`
   std::vector<double> arc_length; // m from the run's start, one per sample
+  std::vector<double> speed_limit; // m/s, one per sample: the limit of the piece it ends (0 = none)
   Pose2 end;
   double length = 0.0;            // m (0 for a turn in place)
 };
 
 // The path's runs, in order (pieces with amount 0 are skipped). sample_step in m (> 0).
-std::vector<TrackedRun> SplitIntoRuns(const PlannedPath& path, double sample_step);
+// speed_limits: m/s per piece of the path (path_t's segment speed; 0 = none), or empty.
+std::vector<TrackedRun> SplitIntoRuns(const PlannedPath& path, double sample_step,
+                                      const std::vector<double>& speed_limits = {});
+// m/s, the least speed limit of `run` from arc length `from` over the next `distance` m
+// (0 = none there).
+double SpeedLimitAhead(const TrackedRun& run, int index, double distance);
 
 // The sample of `run` nearest to `position`, searched from index `hint` over the next
 // `window` metres of the run (and back to the hint: the vehicle never goes back along a run).

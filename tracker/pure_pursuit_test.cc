@@ -135,6 +135,62 @@ TEST(PathTrackerTest, RefusesAPathThroughAWallAndStopsShortOfOneItWasNotTold) {
   EXPECT_NE(s.message.find("blocked"), std::string::npos) << s.message;
 }
 
+TEST(PathTrackerTest, NearAWallItKeepsConvergingOnThePathSlowerRatherThanGoingStraightOn) {
+  // A path along y = 0 with a wall 25 cm right of the miner's side; the vehicle 6 cm left of
+  // the path. Pure pursuit asks for the right arc; 3 s of it at 0.5 m/s (1.5 m, 21 deg) would
+  // touch the wall, a few centimetres of it would not. The tracker takes the arc over the
+  // distance found free, slower (that distance / collision_time), not straight on at speed
+  // (which is free, but keeps the 6 cm it could never take out beside the wall).
+  const Footprint miner = Footprint::Rectangle(3.3, 10.0);
+  PlannedPath p;
+  p.start = Pose2(4.9, 0, 0);
+  p.pieces.push_back({Motion::kForward, 25.1, 0.0, Pose2(30, 0, 0)});
+  PathTrackerOptions o;
+  o.cruise_speed = 0.5;
+  o.regulated = false;
+  PathTracker tracker(o, miner);
+  const std::vector<Segment> walls = {{-10, -1.9, 40, -1.9}, {-10, 4, 40, 4}};
+  tracker.SetMap(std::make_shared<TrackerMap>(walls, miner, 0.0, 4.0));
+  ASSERT_EQ(tracker.SetPath(p), TrackState::kActive);
+  const Pose2 left_of_path(5.0, 0.06, 0.0);
+  const TrackStep s = tracker.Update(left_of_path);
+  EXPECT_LT(s.curvature, -o.straight_deadband) << "the pursuit turns right: " << s.message;
+  EXPECT_EQ(s.command.mode, DriveCommand::Mode::kVelocity) << s.message;
+  EXPECT_LT(s.command.omega, 0.0) << s.message;
+  EXPECT_GT(s.command.v, 0.0);
+  EXPECT_LT(s.command.v, 0.1) << "slower: only a short arc is free";
+  EXPECT_NE(s.message.find("arc_right"), std::string::npos) << s.message;
+  // What it took is free for collision_time at its speed; the full arc is not.
+  const TrackerMap map(walls, miner, 0.0, 4.0);
+  const double checked = s.command.v * o.collision_time;
+  EXPECT_FALSE(map.PieceCollides(left_of_path, {Motion::kArcRight, checked, 4.0,
+                                                PoseAfter(left_of_path, Motion::kArcRight, checked, 4.0)}));
+  EXPECT_TRUE(map.PieceCollides(left_of_path, {Motion::kArcRight, 1.5, 4.0,
+                                               PoseAfter(left_of_path, Motion::kArcRight, 1.5, 4.0)}));
+}
+
+TEST(PathTrackerTest, HonoursThePathsSpeedLimitsFromBeforeTheyStart) {
+  // 2 m at no limit, then 2 m limited to 0.03 m/s (path_t's segment speed), one run.
+  PlannedPath p;
+  p.start = Pose2(0, 0, 0);
+  p.pieces.push_back({Motion::kForward, 2.0, 0.0, Pose2(2, 0, 0)});
+  p.pieces.push_back({Motion::kForward, 2.0, 0.0, Pose2(4, 0, 0)});
+  for (const bool regulated : {true, false}) {
+    PathTrackerOptions o;
+    o.regulated = regulated;
+    PathTracker tracker(o, Footprint::Rectangle(3.3, 10.0));
+    ASSERT_EQ(tracker.SetPath(p, {0.0, 0.03}), TrackState::kActive);
+    EXPECT_DOUBLE_EQ(tracker.Update(Pose2(0.5, 0, 0)).command.v, 0.076) << "cruise before the limit";
+    // The lookahead (0.6 m) reaches the limited piece: slower before it starts.
+    EXPECT_DOUBLE_EQ(tracker.Update(Pose2(1.6, 0, 0)).command.v, 0.03);
+    EXPECT_DOUBLE_EQ(tracker.Update(Pose2(2.5, 0, 0)).command.v, 0.03);
+  }
+  // Without limits, cruise all along.
+  PathTracker free({}, Footprint::Rectangle(3.3, 10.0));
+  ASSERT_EQ(free.SetPath(p), TrackState::kActive);
+  for (double x : {0.5, 1.5, 2.5}) EXPECT_DOUBLE_EQ(free.Update(Pose2(x, 0, 0)).command.v, 0.076) << x;
+}
+
 TEST(PathTrackerTest, AtACuspItTurnsToTheNextRunsHeadingBeforeDrivingIt) {
   // 1 m forward, then 2 m reversed on a right arc at the miner's radius (no turn in place
   // planned at the cusp). The vehicle reaches the cusp 3 deg short of the heading: it stops,

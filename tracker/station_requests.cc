@@ -11,6 +11,7 @@ std::optional<StationRequests::Request> StationRequests::Update(int64_t now) {
   if (Finished()) return std::nullopt;
   switch (phase_) {
     case Phase::kRequest: {
+      if (attempts_ > 0 && static_cast<double>(now - since_) * 1e-6 < options_.retry_delay) return std::nullopt;
       Request r{next_id_++, stations_[static_cast<size_t>(station_)], station_};
       active_id_ = r.request_id;
       ++attempts_;

@@ -3,8 +3,10 @@
 // station in turn, ask the path planner for a path there (PATH_REQUEST), wait for its PATH,
 // then for the path tracker's TASK_STATUS DONE of that request, stand still `dwell` s for the
 // ladar's scans, and go on. A request without an answer in `answer_timeout` s, a path that
-// is not feasible, or a tracker's FAILED is retried from where the vehicle is, at most
-// `max_attempts` times per station; then the station is skipped (reported). Plain C++: the
+// is not feasible, or a tracker's FAILED is retried from where the vehicle is, `retry_delay` s
+// later (the map and the vehicle may have changed: a planner that has just refused a goal
+// answers the same at once), at most `max_attempts` times per station; then the station is
+// skipped (reported). Plain C++: the
 // caller passes the clock and the messages' contents.
 
 #include <cstdint>
@@ -20,6 +22,7 @@ struct StationRequestOptions {
   double dwell = 0.5;            // s standing still at each station
   double answer_timeout = 30.0;  // s to wait for the PATH of a request
   int max_attempts = 3;          // requests per station before it is skipped
+  double retry_delay = 2.0;      // s from a failed attempt to the next request
 };
 
 class StationRequests {

@@ -37,12 +37,16 @@ void DeclareOptions(ConfigSchema& s, SurveyClientOptions& o) {
   s.AddDouble("heading_tolerance", &o.heading_tolerance, "rad", "goal heading tolerance asked of the planner", 0.0001,
               3.0);
   s.AddBool("allow_reverse", &o.allow_reverse, "the planner may reverse (multi-point maneuvers)");
+  s.AddBool("allow_unknown", &o.allow_unknown,
+            "the planner may plan through space no scan has seen (a survey that explores); false = seen free space only");
   s.AddBool("exit_when_done", &o.exit_when_done, "stop the process after the last station");
   const OptionScope r = OptionScope(s).Nested("requests");
   r.AddDouble("dwell", &o.requests.dwell, "s", "time standing still at each station (for the ladar's scans)", 0.0,
               600.0);
   r.AddDouble("answer_timeout", &o.requests.answer_timeout, "s", "time to wait for the PATH of a request", 0.1, 3600.0);
   r.AddInt("max_attempts", &o.requests.max_attempts, "requests per station before it is skipped", 1, 100);
+  r.AddDouble("retry_delay", &o.requests.retry_delay, "s",
+              "from a failed attempt (no path, no answer, the tracker's FAILED) to the next request", 0.0, 600.0);
 }
 
 std::vector<Station> LoadClientStations(const SurveyClientOptions& o) {
@@ -80,6 +84,7 @@ void SurveyClientNode::Tick(int64_t now) {
       m.position_tolerance = options_.position_tolerance;
       m.heading_tolerance = options_.heading_tolerance;
       m.allow_reverse = options_.allow_reverse;
+      m.allow_unknown = options_.allow_unknown;
       m.clearance = options_.clearance;
       Publish(runtime_.bus(), options_.request_channel, m);
       MINENAV_LOG(kInfo) << requests_.message();

@@ -29,6 +29,7 @@ struct SurveyClientOptions {
   double position_tolerance = 0.05;  // m, asked of the planner
   double heading_tolerance = 0.0175; // rad, asked of the planner
   bool allow_reverse = true;
+  bool allow_unknown = false;  // the planner may plan through space no scan has seen (exploring)
   bool exit_when_done = true;
   StationRequestOptions requests;
 };

@@ -55,6 +55,7 @@ TEST(SurveyClientNodeTest, RequestsEachStationAfterTheTrackerIsDone) {
   o.stations = "test";
   o.requests.dwell = 1.0;
   o.requests.max_attempts = 2;
+  o.requests.retry_delay = 0.0;
   Harness h(o, {Station{Pose2(5, 0, 0)}, Station{Pose2(10, 0, 0)}, Station{Pose2(15, 0, 0)}});
   h.Tick();
   h.Tick();
@@ -70,6 +71,7 @@ TEST(SurveyClientNodeTest, RequestsEachStationAfterTheTrackerIsDone) {
   const path_request_t first = h.Requests()[0];
   EXPECT_DOUBLE_EQ(first.start.x, 1.0);
   EXPECT_DOUBLE_EQ(first.goal.x, 5.0);
+  EXPECT_FALSE(first.allow_unknown) << "seen free space only, unless asked";
   h.Answer(first.request_id, true);
   for (int k = 0; k < 4; ++k) h.Tick();
   EXPECT_EQ(h.Requests().size(), 1u) << "waiting for the tracker";
@@ -107,10 +109,36 @@ TEST(SurveyClientNodeTest, RequestsEachStationAfterTheTrackerIsDone) {
   EXPECT_TRUE(h.runtime->StopRequested());
 }
 
+// A planner that has just refused a goal answers the same at once: the retry waits
+// retry_delay (the map and the vehicle may change meanwhile).
+TEST(SurveyClientNodeTest, ARetryWaitsItsDelay) {
+  SurveyClientOptions o;
+  o.stations = "test";
+  o.requests.retry_delay = 2.0;
+  Harness h(o, {Station{Pose2(5, 0, 0)}});
+  PoseEstimate e;
+  e.utime = h.clock.NowUtime();
+  e.pose = Pose2(1, 2, 0.1);
+  e.converged = true;
+  h.bus->InjectMessage("POSE", ToLcm(e));
+  h.Tick();
+  h.Tick();
+  ASSERT_EQ(h.Requests().size(), 1u);
+  h.Answer(h.Requests()[0].request_id, false);
+  h.Tick();  // the answer: a retry due in 2 s
+  for (int k = 0; k < 3; ++k) {
+    h.Tick();
+    EXPECT_EQ(h.Requests().size(), 1u) << "within the delay, tick " << k;
+  }
+  h.Tick();
+  h.Tick();
+  EXPECT_EQ(h.Requests().size(), 2u) << "after it";
+}
+
 TEST(SurveyClientNodeTest, EveryOptionIsReachable) {
   const auto keys = ExpectEveryOptionReachable<SurveyClientOptions>(
       SurveyClientOptions(), [](ConfigSchema& s, SurveyClientOptions& o) { DeclareOptions(s, o); });
-  EXPECT_EQ(keys.size(), 14u);  // stations, 4 channels, rate, 3 request values, reverse, exit, the 3 requests.*
+  EXPECT_EQ(keys.size(), 16u);  // stations, 4 channels, rate, 3 request values, reverse, unknown, exit, the 4 requests.*
   EXPECT_THROW(LoadClientStations(SurveyClientOptions()), UsageError);
 }
 

@@ -31,4 +31,4 @@ fi
 }
 echo "== the operator's view of the demo (pid $pid): http://127.0.0.1:$port/"
 exec "$build/bin/viewer_bridge" --port "$port" --net-namespace "/proc/$pid/ns/net" \
-  --display.vehicle-width 1.2 --display.vehicle-length 2 "${extra[@]}"
+  "${extra[@]}"

@@ -66,20 +66,22 @@ if(TARGET contour_mapper AND TARGET iconic_pose_estimator AND TARGET log_tool)
   minenav_hostile_bus_test(bus.hostile_ipe_timestamps 7799 "Ipe/HostileTimestampTest.*")
 endif()
 
-# Issue 13: path_planner live on the contour map the mapper builds from the simulated survey
-# (vehicle_sim + ladar_driver + contour_mapper + waypoint_driver), checked against the true world.
-if(TARGET contour_mapper AND TARGET path_planner AND TARGET waypoint_driver)
+# Issues 13 and 14: the survey driven on the fleet's estimate (vehicle_sim + ladar_driver +
+# contour_mapper + path_planner + path_tracker + survey_client), then path_planner live on the
+# contour map the mapper built, checked against the true world.
+if(TARGET contour_mapper AND TARGET path_planner AND TARGET path_tracker AND TARGET survey_client)
   add_executable(planner_live_bus_test bus/planner_live_bus_test.cc)
   target_include_directories(planner_live_bus_test PRIVATE "${CMAKE_SOURCE_DIR}")
   target_link_libraries(planner_live_bus_test PRIVATE minenav_test_support minenav_node minenav_sim
                         minenav_planner_path_checker GTest::gtest_main)
   target_compile_definitions(planner_live_bus_test PRIVATE ${MINENAV_PROCESS_DEFS}
     MINENAV_CONTOUR_MAPPER_BIN="$<TARGET_FILE:contour_mapper>"
-    MINENAV_WAYPOINT_DRIVER_BIN="$<TARGET_FILE:waypoint_driver>"
-    MINENAV_PATH_PLANNER_BIN="$<TARGET_FILE:path_planner>")
+    MINENAV_PATH_PLANNER_BIN="$<TARGET_FILE:path_planner>"
+    MINENAV_PATH_TRACKER_BIN="$<TARGET_FILE:path_tracker>"
+    MINENAV_SURVEY_CLIENT_BIN="$<TARGET_FILE:survey_client>")
   minenav_warnings(planner_live_bus_test)
   set_target_properties(planner_live_bus_test PROPERTIES RUNTIME_OUTPUT_DIRECTORY "${CMAKE_BINARY_DIR}/tests")
-  add_dependencies(planner_live_bus_test vehicle_sim ladar_driver contour_mapper waypoint_driver path_planner)
+  add_dependencies(planner_live_bus_test vehicle_sim ladar_driver contour_mapper path_planner path_tracker survey_client)
   add_test(NAME bus.planner_on_the_live_contour_map
     COMMAND "${MINENAV_PRIVATE_NET}" --port 7800 -- $<TARGET_FILE:planner_live_bus_test>)
   set_tests_properties(bus.planner_on_the_live_contour_map PROPERTIES TIMEOUT 180 LABELS bus)

@@ -1,5 +1,6 @@
 #include "tracker/testing/closed_loop.h"
 
+#include <algorithm>
 #include <cmath>
 #include <deque>
 #include <limits>
@@ -36,19 +37,93 @@ Nearest NearestOnRun(const TrackedRun& run, const Pose2& truth) {
 
 }  // namespace
 
+const char* ToString(PoseSource source) {
+  return source == PoseSource::kLiveMapper ? "live mapper" : "noisy truth";
+}
+
 ClosedLoopResult RunClosedLoop(const std::vector<Segment>& world, const std::vector<Segment>& map,
                                const PlannedPath& path, const Footprint& footprint, const ClosedLoopOptions& o,
                                std::optional<Pose2> truth_start) {
   ClosedLoopResult result;
   const Pose2 start = truth_start.value_or(path.start);
   SkidSteerVehicle vehicle(o.vehicle, start);
-  DeadReckoning odometry(o.odometry, Pose2(), o.seed * 7919 + 1);  // its own frame: starts at the origin
+  DeadReckoning odometry(o.odometry, start, o.seed * 7919 + 1);  // as vehicle_sim's: from the start pose
   std::mt19937_64 rng(o.seed);
   std::normal_distribution<double> gauss(0.0, 1.0);
   PosePredictor predictor(o.predictor);
   PathTracker tracker(o.tracker, footprint);
-  if (!map.empty())
-    tracker.SetMap(std::make_shared<TrackerMap>(map, footprint, o.tracker.collision_margin, o.tracker.turn_radius));
+  auto set_map = [&](const std::vector<Segment>& segments) {
+    tracker.SetMap(std::make_shared<TrackerMap>(segments, footprint, o.tracker.collision_margin, o.tracker.turn_radius));
+  };
+  const bool live = o.pose_source == PoseSource::kLiveMapper;
+  std::optional<MapperPoseSource> mapper;
+  std::optional<StaticSegmentIndex> world_index;
+  if (live) {
+    MapperPoseSourceOptions mo = o.mapper;
+    mo.seed = o.seed;
+    mapper.emplace(mo);
+    world_index.emplace(world);
+  }
+  // Estimates (and with the live mapper its maps) on their way, in order of arrival.
+  struct Pending {
+    double at = 0.0;
+    PoseEstimate estimate;
+    Pose2 truth;  // at the scan
+    bool map = false;
+    std::vector<Segment> segments;
+  };
+  std::deque<Pending> pending;
+  std::vector<double> latencies;
+  double sum_e2 = 0.0;
+  int judged_estimates = 0;
+  // A scan at t: its estimate (and map) go on their way.
+  auto scan = [&](double t, int64_t utime, const Pose2& truth) {
+    Pending p;
+    p.truth = truth;
+    if (live) {
+      const MapperPoseSource::Output out = mapper->Scan(*world_index, truth, odometry.pose(), utime, t);
+      p.at = out.ready_at;
+      p.estimate = out.estimate;
+      result.scans_inserted += out.outcome == mapper::ScanOutcome::kInserted;
+      result.scans_tracked += out.outcome == mapper::ScanOutcome::kTracked;
+      result.scans_refused += out.outcome == mapper::ScanOutcome::kRefused;
+      if (out.map_changed) {
+        p.map = true;
+        p.segments = mapper->MapSegments();
+      }
+    } else {
+      p.at = t + o.pose_latency;
+      PoseEstimate& e = p.estimate;
+      e.utime = utime;
+      e.converged = true;
+      e.status = "ok";
+      e.source = "noisy truth";
+      e.pose = Pose2(truth.x + o.pose_sigma_xy * gauss(rng), truth.y + o.pose_sigma_xy * gauss(rng),
+                     NormalizeAngle(truth.theta + o.pose_sigma_theta * gauss(rng)));
+      e.covariance = Eigen::Vector3d(o.pose_sigma_xy * o.pose_sigma_xy, o.pose_sigma_xy * o.pose_sigma_xy,
+                                     o.pose_sigma_theta * o.pose_sigma_theta)
+                         .asDiagonal();
+    }
+    if (o.pose_jump_at && t >= *o.pose_jump_at && t < o.pose_jump_until) p.estimate.pose = p.estimate.pose * o.pose_jump;
+    latencies.push_back(p.at - t);
+    pending.push_back(std::move(p));
+  };
+
+  double next_scan = 0.0;
+  if (live) {
+    // The surveyed map, then what the first scan at the start adds, before the path is given.
+    for (size_t k = 0; k < o.survey.size(); ++k) {
+      const double t = -10.0 * static_cast<double>(o.survey.size() - k);
+      mapper->Scan(*world_index, o.survey[k], o.survey[k], kT0 + static_cast<int64_t>(t * 1e6), t);
+    }
+    scan(0.0, kT0, start);
+    set_map(mapper->MapSegments());
+    ++result.map_updates;
+    pending.back().map = false;
+    next_scan = o.pose_rate > 0.0 ? 1.0 / o.pose_rate : std::numeric_limits<double>::infinity();
+  } else if (!map.empty()) {
+    set_map(map);
+  }
   TrackState state = tracker.SetPath(path);
   const std::vector<TrackedRun> runs = SplitIntoRuns(path, 0.01);
   const Pose2 goal = runs.empty() ? path.start : runs.back().end;
@@ -56,8 +131,6 @@ ClosedLoopResult RunClosedLoop(const std::vector<Segment>& world, const std::vec
 
   const double dt = 1.0 / o.sim_rate;
   const int control_every = std::max(1, static_cast<int>(std::lround(o.sim_rate / o.control_rate)));
-  std::deque<std::pair<double, PoseEstimate>> pending;
-  double next_scan = 0.0;
   DriveCommand command;  // stop
   double sum_ct2 = 0.0, sum_h2 = 0.0;
   int64_t measured = 0;
@@ -73,29 +146,28 @@ ClosedLoopResult RunClosedLoop(const std::vector<Segment>& world, const std::vec
     const int64_t utime = kT0 + static_cast<int64_t>(std::llround(t * 1e6));
     if (t > o.max_time || (finished_at && t > *finished_at + 3.0)) break;
     const Pose2 truth = vehicle.pose();
-    // A scan now: its estimate arrives pose_latency later.
+    // A scan now: its estimate arrives later.
     if (t + 1e-9 >= next_scan && !(o.pose_outage_at && t >= *o.pose_outage_at)) {
-      PoseEstimate e;
-      e.utime = utime;
-      e.converged = true;
-      e.status = "ok";
-      e.source = "noisy truth";
-      Pose2 noisy(truth.x + o.pose_sigma_xy * gauss(rng), truth.y + o.pose_sigma_xy * gauss(rng),
-                  NormalizeAngle(truth.theta + o.pose_sigma_theta * gauss(rng)));
-      if (o.pose_jump_at && t >= *o.pose_jump_at && t < o.pose_jump_until) noisy = noisy * o.pose_jump;
-      e.pose = noisy;
-      e.covariance = Eigen::Vector3d(o.pose_sigma_xy * o.pose_sigma_xy, o.pose_sigma_xy * o.pose_sigma_xy,
-                                     o.pose_sigma_theta * o.pose_sigma_theta)
-                         .asDiagonal();
-      pending.emplace_back(t + o.pose_latency, e);
+      scan(t, utime, truth);
       next_scan = o.pose_rate > 0.0 ? next_scan + 1.0 / o.pose_rate : std::numeric_limits<double>::infinity();
     }
-    if (!o.later_map.empty() && t >= o.later_map_at && t - dt < o.later_map_at)
-      tracker.SetMap(std::make_shared<TrackerMap>(o.later_map, footprint, o.tracker.collision_margin,
-                                                  o.tracker.turn_radius));
+    if (!o.later_map.empty() && t >= o.later_map_at && t - dt < o.later_map_at) set_map(o.later_map);
     predictor.AddOdometry(odometry.Reading(utime));
-    while (!pending.empty() && pending.front().first <= t + 1e-9) {
-      const EstimateVerdict v = predictor.AddEstimate(pending.front().second);
+    while (!pending.empty() && pending.front().at <= t + 1e-9) {
+      const Pending& p = pending.front();
+      if (p.map) {
+        set_map(p.segments);
+        ++result.map_updates;
+      }
+      if (p.estimate.converged) {
+        const double e = TranslationDistance(p.estimate.pose, p.truth);
+        sum_e2 += e * e;
+        ++judged_estimates;
+        result.estimate_error_max = std::max(result.estimate_error_max, e);
+        result.estimate_heading_error_max =
+            std::max(result.estimate_heading_error_max, std::abs(NormalizeAngle(p.estimate.pose.theta - p.truth.theta)));
+      }
+      const EstimateVerdict v = predictor.AddEstimate(p.estimate);
       ++result.estimates;
       if (v.trusted) ++result.trusted;
       if (v.jump) {
@@ -152,6 +224,12 @@ ClosedLoopResult RunClosedLoop(const std::vector<Segment>& world, const std::vec
     result.message = "cut off after " + std::to_string(o.max_time) + " s: " + tracker.message();
     result.time = o.max_time;
   }
+  if (judged_estimates > 0) result.estimate_error_rms = std::sqrt(sum_e2 / judged_estimates);
+  if (!latencies.empty()) {
+    std::sort(latencies.begin(), latencies.end());
+    result.latency_median = latencies[latencies.size() / 2];
+    result.latency_max = latencies.back();
+  }
   if (measured > 0) {
     result.cross_track_rms = std::sqrt(sum_ct2 / static_cast<double>(measured));
     result.heading_rms = std::sqrt(sum_h2 / static_cast<double>(measured));
@@ -172,6 +250,23 @@ ClosedLoopResult RunClosedLoop(const std::vector<Segment>& world, const std::vec
 #include "sim/mine_generator.h"
 
 namespace minenav::testing {
+
+std::vector<Pose2> SurveyPoses(const PlannedPath& path, double spacing) {
+  std::vector<Pose2> poses = {path.start};
+  double since = 0.0;
+  for (const TrackedRun& run : SplitIntoRuns(path, 0.1)) {
+    for (size_t k = 1; k < run.samples.size(); ++k) {
+      since += TranslationDistance(run.samples[k - 1], run.samples[k]);
+      if (since >= spacing) {
+        poses.push_back(run.samples[k]);
+        since = 0.0;
+      }
+    }
+  }
+  if (!path.pieces.empty() && TranslationDistance(poses.back(), path.pieces.back().end) > 1e-6)
+    poses.push_back(path.pieces.back().end);
+  return poses;
+}
 
 const std::vector<std::string>& ScenarioNames() {
   static const std::vector<std::string> names = {"straight_entry", "box_cut", "slab_cut", "intersection_turn"};
