@@ -365,6 +365,8 @@ void NodeSeeds(const mapper::MappingSession& session) {
     c.Add(0, 10, ToLcm(RoomScan(t + 15'000, 1, kStand, 180)));
     c.Add(1, 10, Odometry(t + 20'000, 1, kStand));
     Seed("iconic_pose_estimator", "contour_map", c.bytes());
+    // feature_pose_estimator: LADAR_SCAN, ODOMETRY, LINE_MAP (the same channels first).
+    Seed("feature_pose_estimator", "drive", w.bytes());
   }
   {  // contour_mapper: LADAR_SCAN, ODOMETRY
     NodeFuzzInputWriter w;
@@ -416,11 +418,6 @@ void NodeSeeds(const mapper::MappingSession& session) {
     w.Add(2, 100, Status(t + 710'000, 1, task_status_t::ACTIVE, 0.1f, "driving"));
     w.Add(2, 600, Status(t + 1'310'000, 1, task_status_t::DONE, 1.0f, "done"));
     Seed("survey_client", "station", w.bytes());
-  }
-  {  // waypoint_driver: ODOMETRY
-    NodeFuzzInputWriter w;
-    for (int i = 0; i < 30; ++i) w.Add(0, 50, Odometry(t + (i + 1) * 50'000, i, Pose2(0.02 * i, 0, 0), 0.4));
-    Seed("waypoint_driver", "drive", w.bytes());
   }
   {  // cutter: CUT_TASK, POSE, ODOMETRY, CUTTER_STATE, CONTOUR_MAP
     NodeFuzzInputWriter w;
@@ -486,7 +483,10 @@ void FileSeeds(const mapper::MappingSession& session) {
   Seed("fleet_file", "mission", ReadFile((g_root.parent_path() / "fleet" / "mission.fleet").string()));
   Seed("fleet_file", "two_hosts", ReadFile((g_root.parent_path() / "tests" / "bus" / "two_hosts.fleet").string()));
   // The checkpoint of the three-scan session.
-  Seed("map_checkpoint", "three_scans", mapper::EncodeCheckpoint(mapper::CheckpointOf(session)));
+  const std::string checkpoint = mapper::EncodeCheckpoint(mapper::CheckpointOf(session));
+  Seed("map_checkpoint", "three_scans", checkpoint);
+  // The payload alone (map_checkpoint_fuzzer.cc frames it): magic 8, version 4, size 8 ... hash 8.
+  Seed("map_checkpoint", "three_scans_payload", checkpoint.substr(20, checkpoint.size() - 28));
 }
 
 // A short CARMEN log in the formats dataset_readers/carmen_log.h reads.

@@ -1,5 +1,5 @@
 // Fuzz target: the scan stations CSV reader (common/file_io.h ParseStationsCsv: survey_client,
-// waypoint_driver, the log tools). What it accepts must survive its own writer.
+// the log tools). What it accepts must survive its own writer.
 
 #include <string>
 
