@@ -57,7 +57,8 @@ function(minenav_lcm_types)
   target_link_libraries(${ARG_TARGET} INTERFACE lcm::lcm)
   # lcm-gen's decode() reads the fingerprint into an uninitialised local that GCC's
   # middle end flags after inlining; SYSTEM does not silence middle-end warnings.
-  target_compile_options(${ARG_TARGET} INTERFACE -Wno-maybe-uninitialized)
+  # (A GCC-only option: clang, which the fuzz build uses, does not know it.)
+  target_compile_options(${ARG_TARGET} INTERFACE $<$<CXX_COMPILER_ID:GNU>:-Wno-maybe-uninitialized>)
 endfunction()
 
 # minenav_lcm_json(TARGET <name> TYPES <lcm types target> FILES a.lcm ...)

@@ -411,9 +411,11 @@ std::string ConfigSchema::ConfigText() const {
   std::ostringstream os;
   os << "# " << program_ << " configuration\n";
   for (const auto& e : entries_) {
-    os << "# " << e.help;
-    if (!e.unit.empty()) os << " [" << e.unit << "]";
-    os << "\n" << e.key << " = " << e.get() << "\n";
+    // Every line of a help that spans lines is a comment: the text must read back with
+    // --config (the config fuzz target found a multi-line help that did not, issue 16).
+    std::istringstream help(e.help + (e.unit.empty() ? "" : " [" + e.unit + "]"));
+    for (std::string line; std::getline(help, line);) os << "# " << line << "\n";
+    os << e.key << " = " << e.get() << "\n";
   }
   return os.str();
 }

@@ -100,6 +100,29 @@ TEST(ConfigTest, PrintedConfigReadsBackTheSame) {
   std::remove(file.c_str());
 }
 
+// Issue 16 (fuzz target config): a help text spanning lines (the contour mapper's
+// worker_queue_capacity) made --print-config write a line that is neither a comment nor
+// `key = value`, so the printed configuration did not read back.
+TEST(ConfigTest, PrintedConfigWithAMultiLineHelpReadsBack) {
+  auto declare = [](ConfigSchema& s, double* queue, int* points) {
+    s.AddDouble("queue", queue, "s", "how long scans wait\n(a full queue drops the oldest)\nat most", 0.0, 100.0);
+    s.AddInt("points", points, "readings per scan");
+  };
+  double queue_a = 7.5;
+  int points_a = 3;
+  ConfigSchema a("test", "test");
+  declare(a, &queue_a, &points_a);
+  const std::string text = a.ConfigText();
+  EXPECT_NE(text.find("# (a full queue drops the oldest)\n"), std::string::npos) << text;
+  double queue_b = 0.0;
+  int points_b = 0;
+  ConfigSchema b("test", "test");
+  declare(b, &queue_b, &points_b);
+  ASSERT_NO_THROW(b.LoadText(text, "printed")) << text;
+  EXPECT_DOUBLE_EQ(queue_b, 7.5);
+  EXPECT_EQ(points_b, 3);
+}
+
 TEST(ConfigTest, NumberLists) {
   const auto v = ParseNumberList("0.33,0.33,3.33deg", "--pose-noise", 3);
   EXPECT_DOUBLE_EQ(v[0], 0.33);

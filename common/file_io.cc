@@ -63,6 +63,11 @@ std::vector<Segment> ParseSegmentsJson(const std::string& text, const std::strin
     doc = nlohmann::json::parse(text);
   } catch (const nlohmann::json::parse_error& e) {
     throw InputError(source_name + ": not valid JSON (byte " + std::to_string(e.byte) + ")");
+  } catch (const nlohmann::json::exception& e) {
+    // A number beyond a double ("1e999": out_of_range 406) is no parse_error; found by the
+    // segments_json fuzz target (issue 16): it escaped as a runtime failure without the file.
+    std::string what = e.what();
+    throw InputError(source_name + ": not valid JSON (" + what.substr(0, what.find('\n')) + ")");
   }
   if (!doc.is_object() || !doc.contains("segments"))
     throw InputError(source_name + ": expected an object with key \"segments\"");

@@ -38,6 +38,17 @@ TEST(FileIoTest, MalformedSegmentsAreNamed) {
   EXPECT_NE(message(R"({"segments": [[1,2,3,4],[1,"a",3,4]]})").find("segments[1]"), std::string::npos);
 }
 
+// Issue 16 (fuzz target segments_json): a number beyond a double made nlohmann throw
+// out_of_range, which is no InputError: the process ended "failed" (exit 3) without the file.
+TEST(FileIoTest, ANumberBeyondADoubleIsABadFileNamed) {
+  try {
+    ParseSegmentsJson(R"({"segments": [[0, 0, 121e308, 0]]})", "w.json");
+    ADD_FAILURE() << "accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("w.json: not valid JSON"), std::string::npos) << e.what();
+  }
+}
+
 TEST(FileIoTest, PosesCsvRoundTripAndErrors) {
   const std::vector<StampedPose> poses = {{100, {1, 2, 0.5}}, {200, {-1, 3.25, -3.0}}};
   const auto back = ParsePosesCsv(PosesToCsv(poses), "mem");

@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <string>
+
+#include "common/file_io.h"
 
 namespace minenav {
 
@@ -33,8 +36,16 @@ GridFrame GridFrame::Covering(const Eigen::Vector2d& lo, const Eigen::Vector2d& 
   f.cell = cell_size;
   f.x0 = lo.x() - margin - cell_size;
   f.y0 = lo.y() - margin - cell_size;
-  f.nx = static_cast<int>(std::ceil((hi.x() + margin + cell_size - f.x0) / cell_size)) + 1;
-  f.ny = static_cast<int>(std::ceil((hi.y() + margin + cell_size - f.y0) / cell_size)) + 1;
+  const double nx = std::ceil((hi.x() + margin + cell_size - f.x0) / cell_size) + 1.0;
+  const double ny = std::ceil((hi.y() + margin + cell_size - f.y0) / cell_size) + 1.0;
+  // Found by the fuzz targets (issue 16): a map message with a coordinate of 1e39 m made the
+  // counts overflow int (undefined behaviour) in the planners' and the iconic estimator's grids.
+  if (!(nx * ny <= kMaxDenseCells))
+    throw InputError("a grid of " + std::to_string(nx) + " x " + std::to_string(ny) + " cells of " +
+                     std::to_string(cell_size) + " m (at most " + std::to_string(kMaxDenseCells) +
+                     "): the map spans too far");
+  f.nx = static_cast<int>(nx);
+  f.ny = static_cast<int>(ny);
   return f;
 }
 

@@ -68,8 +68,12 @@ struct GridFrame {
   double cell = 1.0;          // m
   int nx = 0, ny = 0;
 
+  // The most cells a dense frame may have (2^28: 16384 x 16384): more is a map of absurd extent
+  // for its cell size (hostile coordinates such as 1e39 m: the counts would not even fit an int).
+  static constexpr double kMaxDenseCells = 268435456.0;
+
   // The dense frame that covers all segments with `margin` (m) and one more cell around
-  // them; nx, ny >= 1.
+  // them; nx, ny >= 1. Throws InputError when it would have more than kMaxDenseCells cells.
   static GridFrame Covering(const std::vector<Segment>& segments, double cell_size, double margin);
   static GridFrame Covering(const Eigen::Vector2d& lo, const Eigen::Vector2d& hi, double cell_size, double margin);
 

@@ -14,6 +14,7 @@
 #include <set>
 
 #include "common/angle.h"
+#include "common/file_io.h"
 
 namespace minenav {
 namespace {
@@ -100,6 +101,18 @@ TEST(SegmentIndexTest, CellCoordinatesNeverOverflow) {
   EXPECT_EQ(f.CellX(1e30), 10);
   EXPECT_EQ(f.CellX(-1e30), -1);
   EXPECT_EQ(f.CellY(std::nan("")), -1);
+}
+
+// Issue 16 (fuzz targets iconic_pose_estimator, path_planner, task_planner): a map message with
+// a coordinate of 1e39 m made Covering's cell counts overflow int (undefined behaviour).
+TEST(SegmentIndexTest, ACoveringOfAbsurdExtentIsABadInput) {
+  const GridFrame mine = GridFrame::Covering({Segment(0, 0, 1000, 0), Segment(0, 500, 1000, 500)}, 0.25, 1.0);
+  EXPECT_EQ(mine.nx, 4011);  // (1000 + 2 * (1 + 0.25)) / 0.25 + 1 cells
+  EXPECT_EQ(mine.ny, 2011);
+  EXPECT_THROW(GridFrame::Covering({Segment(0, 0, 1.48707e39, 0), Segment(0, 1, 1, 1)}, 0.2, 0.0), InputError);
+  // The limit is on the cells, both ways: 16384 x 16385 is one row too many.
+  EXPECT_NO_THROW(GridFrame::Covering(Eigen::Vector2d(0, 0), Eigen::Vector2d(16381, 16381), 1.0, 0.0));
+  EXPECT_THROW(GridFrame::Covering(Eigen::Vector2d(0, 0), Eigen::Vector2d(16381, 16382), 1.0, 0.0), InputError);
 }
 
 // The walk along a segment lists exactly the cells a test of every cell box lists, and those

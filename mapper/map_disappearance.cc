@@ -159,7 +159,8 @@ MapDisappearanceResult RemoveDisappeared(const PreprocessedScan& scan, const Pos
   std::vector<SideCrossing> crossings;
   std::vector<int> stamp(triangles.size(), -1);
   int stamp_id = 0;
-  for (const auto& [id, c] : map.contours()) {
+  for (const auto& [contour_id, c] : map.contours()) {
+    const int id = contour_id;  // a copy: clang 14 (the fuzz build) cannot capture a structured binding
     double arc_start = 0.0;  // arc length at the start of segment k
     for (int k = 0; k < c.NumSegments(); ++k, ++stamp_id) {
       const Segment s = c.GetSegment(k);

@@ -183,6 +183,17 @@ Se2Planner::Se2Planner(std::vector<Segment> map, Footprint footprint, Se2Planner
   walls.push_back({hi.x(), lo.y(), hi.x(), hi.y()});
   walls.push_back({hi.x(), hi.y(), lo.x(), hi.y()});
   walls.push_back({lo.x(), hi.y(), lo.x(), lo.y()});
+  // A map of absurd extent for the field's cells (hostile coordinates) is refused here, well
+  // below GridFrame::kMaxDenseCells: the grids of the same extent that its users build (the
+  // survey planner's, a metre wider) then stay within it too.
+  const Eigen::Vector2d cells = (hi - lo) / options_.field_resolution + Eigen::Vector2d::Constant(2.0);
+  if (!(cells.x() * cells.y() <= kMaxFieldCells)) {
+    std::ostringstream why;
+    why << "the map spans " << hi.x() - lo.x() << " x " << hi.y() - lo.y() << " m: more than " << kMaxFieldCells
+        << " cells of field_resolution " << options_.field_resolution << " m";
+    setup_error_ = why.str();
+    return;
+  }
   walls_ = std::make_unique<StaticSegmentIndex>(walls);
   const double margin = options_.clearance + 0.5 * options_.collision_step;
   const GridFrame frame = GridFrame::Covering(lo, hi, options_.field_resolution, 0.0);

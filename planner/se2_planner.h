@@ -134,6 +134,10 @@ class Se2Planner {
   };
 
  private:
+  // The most cells of the clearance field (2^25: 1.1 km square at 0.2 m); a larger map is
+  // refused as a setup error (a hostile map message's coordinates, issue 16).
+  static constexpr double kMaxFieldCells = 33554432.0;
+
   std::string CheckPose(const Pose2& pose, const std::string& what) const;
   // The whole search from start to goal (Plan without the corridor waypoints).
   Se2PlanResult Search(const Pose2& start, const Pose2& goal, const SearchLimits& limits) const;

@@ -145,6 +145,18 @@ TEST(FootprintTest, RectangleRadiiAndValidation) {
   EXPECT_EQ(ParseFootprintJson("{\"footprint\": [[1, 1], [-1, 1], [-1, -1], [1, -1]]}", "f.json").vertices.size(), 4u);
 }
 
+// Issue 16 (fuzz targets path_planner, task_planner): a map message with a wall 1e39 m away
+// made the field's grid counts overflow int; such a map is a setup error, every Plan refused.
+TEST(Se2PlannerTest, AMapOfAbsurdExtentIsRefused) {
+  std::vector<Segment> map = planner_test::Crossing(6.0, 20.0);
+  const Se2Planner fine(map, Footprint::Rectangle(3.3, 10.0), Se2PlannerOptions{});
+  EXPECT_EQ(fine.setup_error(), "");
+  map.push_back({1.48707e39, 0.0, 1.48707e39, 1.0});
+  const Se2Planner absurd(map, Footprint::Rectangle(3.3, 10.0), Se2PlannerOptions{});
+  EXPECT_NE(absurd.setup_error().find("the map spans"), std::string::npos) << absurd.setup_error();
+  EXPECT_EQ(absurd.Plan(Pose2(0, 0, 0), Pose2(0, 5, 0)).status, SearchStatus::kInvalidRequest);
+}
+
 TEST(FootprintCollisionTest, FieldAndExactTestAgreeWithBruteForce) {
   std::vector<Segment> map = planner_test::Crossing(6.0, 20.0);
   map.push_back({2.0, 8.0, 2.5, 9.0});  // a stone in the north arm

@@ -10,10 +10,11 @@ MINENAV_JOBS="${MINENAV_JOBS:-$(nproc)}"
 # (log_tool mission-report --png-out; its test checks the PNG). libsystemd-dev: the node
 # loop's notify protocol. libboost-dev: Boost.Beast/Asio (header-only) for viewer/'s HTTP and
 # WebSocket server; chromium: the viewer's browser test (headless, driven by npm
-# playwright-core); tmux: the terminal spy's test (send-keys, capture-pane).
+# playwright-core); tmux: the terminal spy's test (send-keys, capture-pane). clang-14 and
+# libclang-rt-14-dev: the fuzz targets (fuzz/README.md: libFuzzer, ASan and UBSan runtimes).
 MINENAV_PACKAGES=(build-essential cmake liblcm-dev liblcm-bin libeigen3-dev libgtest-dev
                   libgmock-dev zlib1g-dev libbz2-dev nlohmann-json3-dev iproute2 util-linux python3
-                  libsystemd-dev librsvg2-bin libboost-dev chromium tmux)
+                  libsystemd-dev librsvg2-bin libboost-dev chromium tmux clang-14 libclang-rt-14-dev)
 
 # minenav_install_missing PACKAGE...: apt-get installs those of the Debian packages not installed.
 minenav_install_missing() {

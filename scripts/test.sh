@@ -1,8 +1,12 @@
 #!/usr/bin/env bash
 # Runs every test twice: a normal build with warnings as errors, then an
-# AddressSanitizer + UndefinedBehaviorSanitizer build. Installs what is missing first.
-#   scripts/test.sh            both builds
+# AddressSanitizer + UndefinedBehaviorSanitizer build; then the fuzz stage: a clang-14 build of
+# the libFuzzer targets alone (fuzz/README.md), each run over its committed corpus (every input
+# once; MINENAV_FUZZ_SECONDS=N in the environment: N seconds of mutation per target).
+# Installs what is missing first.
+#   scripts/test.sh            both builds and the fuzz stage
 #   scripts/test.sh --quick    the normal build only
+#   scripts/test.sh --fuzz     the fuzz stage only
 # The real-data tests need the public datasets (CMake's MINENAV_DATASETS_DIR, by default
 # ../shared/datasets); without them they are not built and the last line says so. With
 # MINENAV_REQUIRE_DATASETS=1 in the environment (CI) missing datasets fail the configure.
@@ -11,6 +15,8 @@ minenav_install_deps
 
 quick=0
 [ "${1:-}" = "--quick" ] && quick=1
+fuzz_only=0
+[ "${1:-}" = "--fuzz" ] && fuzz_only=1
 
 require=OFF
 [ "${MINENAV_REQUIRE_DATASETS:-}" = "1" ] && require=ON
@@ -23,6 +29,29 @@ run_suite() {
   (cd "$dir" && ctest --output-on-failure -j "$MINENAV_JOBS" --timeout 600)
 }
 
+# The fuzz stage: the fuzz targets and what they link only (target fuzz_targets), unoptimised
+# (-O0: the build is most of the stage's time; a few seconds of fuzzing need no speed), with
+# line tables for the sanitizers' stack traces; then the `fuzz` label (fuzz/CMakeLists.txt).
+run_fuzz() {
+  local dir="$MINENAV_ROOT/build/fuzz"
+  echo "== [fuzz] configure and build the fuzz targets in $dir (clang-14)"
+  CC=clang-14 CXX=clang++-14 minenav_build "$dir" -DMINENAV_WERROR=ON -DMINENAV_FUZZ=ON -DMINENAV_BUILD_BENCH=OFF \
+    -DMINENAV_FUZZ_SECONDS="${MINENAV_FUZZ_SECONDS:-0}" \
+    -DCMAKE_BUILD_TYPE=FuzzSmoke "-DCMAKE_CXX_FLAGS_FUZZSMOKE=-O0 -gline-tables-only" \
+    "-DCMAKE_C_FLAGS_FUZZSMOKE=-O0 -gline-tables-only" -- fuzz_targets
+  echo "== [fuzz] each target over its corpus"
+  # The same sanitizer options whether or not the sanitizer suite ran before (libFuzzer handles
+  # the crash itself: no abort_on_error).
+  (cd "$dir" && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+    ctest --output-on-failure -j "$MINENAV_JOBS" -L fuzz)
+}
+
+if [ $fuzz_only -eq 1 ]; then
+  run_fuzz
+  echo "== fuzz stage passed"
+  exit 0
+fi
+
 run_suite release "$MINENAV_ROOT/build/release"
 if [ $quick -eq 0 ]; then
   export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1:strict_string_checks=1"
@@ -30,6 +59,7 @@ if [ $quick -eq 0 ]; then
   # Benchmarks are compiled (warnings checked) in the normal build; the sanitizer build
   # runs the tests only.
   run_suite sanitize "$MINENAV_ROOT/build/sanitize" -DMINENAV_SANITIZE=ON -DMINENAV_BUILD_BENCH=OFF
+  run_fuzz
 fi
 echo "== all tests passed"
 

@@ -72,7 +72,8 @@ bool SeesThrough(const std::vector<Segment>& world, const Vec& from, const Vec& 
 void Judge(ChangingWorldScenario* sc, const std::vector<std::pair<std::string, int>>& checks,
            const ChangingWorldOptions& o) {
   sc->sample_step = o.sample_step;
-  for (const auto& [label, after] : checks) {
+  for (const auto& [label, after_station] : checks) {
+    const int after = after_station;  // a copy: clang 14 (the fuzz build) cannot capture a structured binding
     ScenarioCheck c;
     c.label = label;
     c.after_station = after;
