@@ -325,19 +325,16 @@ PathPlannerNode::Answer PathPlannerNode::Handle(Job& job) {
     return answer;
   };
   // A vehicle that stands within the clearance of a wall (the map grew around it where it
-  // stopped short, or a cut's ribs beside it) is not stuck: it may leave with less, as much as
-  // it has (the clearance halved until the start is free, at least none: never in contact).
-  // The answer says so.
+  // stopped short, or a cut's ribs beside it) is not stuck: it leaves with the clearance it
+  // has (never in contact). The answer says so.
   if (chosen->setup_error().empty() && !chosen->PoseFree(start)) {
-    for (double c = clearance / 2.0; c >= 0.0; c = c > 0.01 ? c / 2.0 : -1.0) {
-      const Se2Planner& relaxed = planner_with(c > 0.01 ? c : 0.0);
+    const double has = chosen->ClearanceFor(start);
+    if (has >= 0.0) {
+      const Se2Planner& relaxed = planner_with(has);
       if (relaxed.PoseFree(start)) {
-        prefix += "start within " + Fixed(clearance) + " m of a wall: planned with a clearance of " +
-                  Fixed(c > 0.01 ? c : 0.0) + " m; ";
+        prefix += "start within " + Fixed(clearance) + " m of a wall: planned with a clearance of " + Fixed(has) + " m; ";
         chosen = &relaxed;
-        break;
       }
-      if (c <= 0.01) break;
     }
   }
   const Se2Planner& planner = *chosen;

@@ -216,6 +216,17 @@ Se2Planner::Se2Planner(std::vector<Segment> map, Footprint footprint, Se2Planner
 
 bool Se2Planner::PoseFree(const Pose2& pose) const { return checker_ && !checker_->Collides(pose); }
 
+double Se2Planner::ClearanceFor(const Pose2& pose) const {
+  if (!checker_) return -1.0;
+  if (PoseFree(pose)) return options_.clearance;
+  // Within the margin: the spare is 0 and the exact distance is measured with no margin.
+  const FootprintCollisionChecker bare(*walls_, *field_, footprint_, 0.0, options_.collision_discs);
+  const double distance = bare.ExactSpare(pose, std::cos(pose.theta), std::sin(pose.theta));
+  if (distance < 0.0) return -1.0;
+  const double room = distance - 0.5 * options_.collision_step;
+  return std::max(0.0, std::floor(room / 0.005) * 0.005 - 0.005);
+}
+
 bool Se2Planner::PieceCollides(const Pose2& from, const MotionPiece& piece) const {
   const double sweep = Sweep(piece, checker_->circumscribed_radius());
   const int n = std::max(1, static_cast<int>(std::ceil(sweep / options_.collision_step)));

@@ -111,6 +111,11 @@ class Se2Planner {
 
   // Is the pose clear of the walls with the requested clearance (plus the sampling half-step)?
   bool PoseFree(const Pose2& pose) const;
+  // The clearance to ask of a planner for which `pose` is free: the requested one when it is;
+  // else what the pose has from the walls less the sampling half-step (rounded down to 5 mm),
+  // at least 0; negative when the footprint touches a wall. (A vehicle that stopped short
+  // within the clearance of a wall leaves with the clearance it has.)
+  double ClearanceFor(const Pose2& pose) const;
   // Does any checked pose along the piece, driven from `from`, collide?
   bool PieceCollides(const Pose2& from, const MotionPiece& piece) const;
 

@@ -236,13 +236,15 @@ SurveyDecision PlanNextStation(const TaskMap& map_in, const Footprint& footprint
   Se2PlannerOptions po = planner_options;
   po.clearance = r.clearance;
   // A vehicle within the clearance of a wall (it stopped short where the map grew around it)
-  // leaves with the clearance it has: halved until its pose is free, at least none (as the
-  // path planner does with such a start); the reason says so.
+  // leaves with the clearance it has (as the path planner does with such a start); the reason
+  // says so.
   std::optional<Se2Planner> chosen;
   chosen.emplace(map.Boundary(), footprint, po);
-  while (chosen->setup_error().empty() && !chosen->PoseFree(r.vehicle) && po.clearance > 0.0) {
-    po.clearance = po.clearance / 2.0 > 0.01 ? po.clearance / 2.0 : 0.0;
-    chosen.emplace(map.Boundary(), footprint, po);
+  if (chosen->setup_error().empty() && !chosen->PoseFree(r.vehicle)) {
+    if (const double has = chosen->ClearanceFor(r.vehicle); has >= 0.0) {
+      po.clearance = has;
+      chosen.emplace(map.Boundary(), footprint, po);
+    }
   }
   d.path_clearance = po.clearance;
   const Se2Planner& planner = *chosen;

@@ -148,7 +148,7 @@ struct SurveyDecision {
   int plans = 0;                 // path plans made
   int64_t expansions = 0;        // their expansions
   // m the paths from the vehicle keep: the request's clearance, less when the vehicle stood
-  // within it (halved until its pose was free, at least 0).
+  // within it (what it had, Se2Planner::ClearanceFor).
   double path_clearance = 0.0;
 };
 
