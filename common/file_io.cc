@@ -1,9 +1,12 @@
 #include "common/file_io.h"
 
+#include <fcntl.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -37,22 +40,56 @@ void CheckOutputIsNotInput(const std::string& what, const std::string& output,
   }
 }
 
-void WriteFileAtomically(const std::string& path, const std::string& content) {
+namespace {
+
+// Writes all of `content` to a new file and, when durable, fsyncs it.
+void WriteNewFile(const std::string& path, const std::string& tmp, const std::string& content, bool durable) {
+  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd < 0) throw InputError(path + ": cannot open for writing: " + std::strerror(errno));
+  size_t written = 0;
+  while (written < content.size()) {
+    const ssize_t n = ::write(fd, content.data() + written, content.size() - written);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) break;
+    written += static_cast<size_t>(n);
+  }
+  const bool ok = written == content.size() && (!durable || ::fsync(fd) == 0);
+  const int error = errno;
+  if (::close(fd) != 0 || !ok) {
+    std::remove(tmp.c_str());
+    throw InputError(path + ": write failed: " + std::strerror(ok ? errno : error));
+  }
+}
+
+void SyncFolderOf(const std::string& path) {
+  const std::filesystem::path folder = std::filesystem::path(path).parent_path();
+  const int fd = ::open(folder.empty() ? "." : folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (fd < 0) return;  // the file itself is synced; a folder we cannot open is not an error
+  ::fsync(fd);
+  ::close(fd);
+}
+
+}  // namespace
+
+std::string PreviousFilePath(const std::string& path) { return path + ".prev"; }
+
+void WriteFileAtomically(const std::string& path, const std::string& content, const AtomicWriteOptions& options) {
   const std::string tmp = path + ".tmp." + std::to_string(::getpid());
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out) throw InputError(path + ": cannot open for writing");
-    out << content;
-    out.flush();
-    if (!out) {
-      std::remove(tmp.c_str());
-      throw InputError(path + ": write failed");
+  WriteNewFile(path, tmp, content, options.durable);
+  if (options.keep_previous && std::filesystem::exists(path)) {
+    // PATH stays whole throughout: a crash between these steps leaves PATH (and maybe no .prev).
+    const std::string previous = PreviousFilePath(path);
+    std::remove(previous.c_str());
+    if (::link(path.c_str(), previous.c_str()) != 0) {
+      std::error_code ec;
+      std::filesystem::copy_file(path, previous, std::filesystem::copy_options::overwrite_existing, ec);
     }
   }
   if (std::rename(tmp.c_str(), path.c_str()) != 0) {
     std::remove(tmp.c_str());
     throw InputError(path + ": cannot rename temporary file into place");
   }
+  if (options.durable) SyncFolderOf(path);
 }
 
 // ---- segments JSON ----

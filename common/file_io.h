@@ -26,8 +26,20 @@ std::string ReadFile(const std::string& path);
 // `what` names the output option in the message, e.g. "--map-out". Empty paths are ignored.
 void CheckOutputIsNotInput(const std::string& what, const std::string& output,
                            const std::vector<std::string>& inputs);
-// Writes `content` to path.tmp.<pid> and renames it onto `path`.
-void WriteFileAtomically(const std::string& path, const std::string& content);
+// How WriteFileAtomically guards the file against a crash or a power cut.
+struct AtomicWriteOptions {
+  // fsync the new file before the rename and the folder after it: once the call returns the
+  // content survives a power cut (a plain rename can leave an empty file after one on ext4).
+  bool durable = false;
+  // The file it replaces stays as PATH.prev (a hard link, made before the rename): if PATH is
+  // ever found torn or corrupt, the one before it is still there (ReadFileOrPrevious).
+  bool keep_previous = false;
+};
+// Writes `content` to path.tmp.<pid> and renames it onto `path`: a crash mid-write leaves
+// the previous file whole.
+void WriteFileAtomically(const std::string& path, const std::string& content, const AtomicWriteOptions& options = {});
+// PATH.prev, the file WriteFileAtomically kept with keep_previous.
+std::string PreviousFilePath(const std::string& path);
 
 // {"segments": [[x1, y1, x2, y2], ...]} in metres; other keys are allowed and ignored.
 std::vector<Segment> ParseSegmentsJson(const std::string& text, const std::string& source_name);

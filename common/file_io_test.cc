@@ -87,6 +87,26 @@ TEST(FileIoTest, AtomicWriteLeavesNoTemporary) {
   EXPECT_THROW(SaveSegmentsJson((dir / "missing" / "x.json").string(), {}), InputError);
 }
 
+// keep_previous: the replaced file stays whole as PATH.prev; durable changes nothing visible.
+TEST(FileIoTest, AtomicWriteKeepsThePreviousFileWhenAsked) {
+  const testing::TempDir temp("minenav_fileio_prev_test");
+  const std::string path = (temp.path() / "state.bin").string();
+  const AtomicWriteOptions keep{.durable = true, .keep_previous = true};
+  WriteFileAtomically(path, "first", keep);
+  EXPECT_EQ(ReadFile(path), "first");
+  EXPECT_FALSE(std::filesystem::exists(PreviousFilePath(path)));  // nothing was replaced
+  WriteFileAtomically(path, "second", keep);
+  WriteFileAtomically(path, "third", keep);
+  EXPECT_EQ(ReadFile(path), "third");
+  EXPECT_EQ(ReadFile(PreviousFilePath(path)), "second");
+  // A plain write leaves the previous file alone (and keeps none).
+  WriteFileAtomically(path, "fourth");
+  EXPECT_EQ(ReadFile(PreviousFilePath(path)), "second");
+  int files = 0;
+  for (const auto& e : std::filesystem::directory_iterator(temp.path())) files += e.is_regular_file();
+  EXPECT_EQ(files, 2);  // no temporary left
+}
+
 TEST(FileIoTest, OutputThatIsAnInputIsRefused) {
   const testing::TempDir temp("minenav_fileio_same_test");
   const std::filesystem::path& dir = temp.path();

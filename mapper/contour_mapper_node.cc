@@ -37,6 +37,9 @@ void DeclareOptions(OptionScope s, ContourMapperNodeOptions& o) {
            "1 s of 10 Hz scans: a crash loses at most that, and a few-MB checkpoint writes in hundredths of a "
            "second [scans]",
            0, 1000000);
+  s.AddBool("checkpoint_inserts", &o.checkpoint_inserts,
+            "live, with --checkpoint: also save it at every inserted scan, before its POSE goes out, so that a "
+            "kill -9 loses no inserted scan (batch runs ignore it)");
   s.AddString("load_map", &o.load_map, "start from this contour-map JSON (localise against it, keep extending)");
   s.AddString("save_map", &o.save_map, "contour-map JSON written at every checkpoint and at shutdown");
   s.schema().AddChannel(s.Key("scan_channel"), &o.scan_channel, "subscribes", "ladar_scan_t", "scans");
@@ -97,7 +100,10 @@ mapper::MappingSession OpenMappingSession(const ContourMapperNodeOptions& o) {
   // the live worker then finishes its scan quickly, and a batch run is cut short at once.
   so.mapper.refinement.should_stop = [] { return NodeRuntime::StopSignalled(); };
   if (!o.checkpoint.empty() && std::filesystem::exists(o.checkpoint)) {
-    mapper::MappingSession session = mapper::RestoreSession(so, mapper::LoadCheckpoint(o.checkpoint));
+    std::string warning;
+    mapper::MappingSession session =
+        mapper::RestoreSession(so, mapper::LoadCheckpointOrPrevious(o.checkpoint, &warning));
+    if (!warning.empty()) MINENAV_LOG(kWarn) << warning;
     const auto& st = session.state();
     MINENAV_LOG(kInfo) << "resumed from " << o.checkpoint << ": " << session.mapper().scans().size() << " scans, "
                        << session.map().NumContours() << " contours, " << st.inserted << " inserted " << st.tracked
@@ -187,7 +193,8 @@ struct ContourMapperNode::Answer {
 // worker while it runs, the node thread before it starts and after it stopped.
 class ContourMapperNode::Core {
  public:
-  Core(const ContourMapperNodeOptions& p, mapper::MappingSession session) : p_(p), session_(std::move(session)) {}
+  Core(const ContourMapperNodeOptions& p, mapper::MappingSession session, bool live)
+      : p_(p), session_(std::move(session)), live_(live) {}
 
   mapper::MappingSession& session() { return session_; }
   const std::vector<double>& handle_seconds() const { return handle_seconds_; }
@@ -214,7 +221,9 @@ class ContourMapperNode::Core {
       status_ = {heartbeat_t::WARN, "last scan refused: " + r.status};
     }
     if (r.outcome == mapper::ScanOutcome::kInserted) out.publications.push_back(MapMessage(s.scan.utime));
-    if (!p_.checkpoint.empty() && p_.checkpoint_every > 0 && ++since_checkpoint_ >= p_.checkpoint_every) {
+    // Live, an inserted scan is on disk before its POSE and map go out: a kill -9 loses none.
+    const bool save_insert = live_ && p_.checkpoint_inserts && r.outcome == mapper::ScanOutcome::kInserted;
+    if (!p_.checkpoint.empty() && (save_insert || (p_.checkpoint_every > 0 && ++since_checkpoint_ >= p_.checkpoint_every))) {
       SaveState();
       since_checkpoint_ = 0;
     }
@@ -270,6 +279,7 @@ class ContourMapperNode::Core {
  private:
   const ContourMapperNodeOptions& p_;
   mapper::MappingSession session_;
+  bool live_;
   int since_checkpoint_ = 0;
   Status status_{heartbeat_t::OK, ""};
   int last_map_bytes_ = 0;
@@ -322,7 +332,7 @@ ContourMapperNode::ContourMapperNode(NodeRuntime& runtime, ContourMapperNodeOpti
     : runtime_(runtime),
       options_(std::move(options)),
       batch_(runtime.batch()),
-      core_(std::make_unique<Core>(options_, std::move(session))),
+      core_(std::make_unique<Core>(options_, std::move(session), !batch_)),
       sync_({.max_odometry_gap_us = std::llround(options_.run.max_odometry_gap * 1e6)}),
       drops_(std::make_unique<QueueDrops>(options_.worker_queue_capacity)),
       worker_status_{heartbeat_t::OK, ""} {

@@ -50,6 +50,10 @@ struct ContourMapperNodeOptions {
   // Every 10 is about 1 s of 10 Hz scans: a crash (kill -9, power) loses at most that, and a
   // checkpoint of a few MB writes in a few hundredths of a second (mapper/README.md).
   int checkpoint_every = 10;
+  // Live: also saved at every inserted scan (every metre or so of driving), before the scan's
+  // POSE and map go out, so that a kill -9 loses no inserted scan (issue 16). Batch runs
+  // ignore it: the log they replay is their record.
+  bool checkpoint_inserts = true;
   std::string load_map;  // start from this contour map
   std::string save_map;  // contour map written at every checkpoint and at the stop
   std::string scan_channel = "LADAR_SCAN";

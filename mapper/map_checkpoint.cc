@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <set>
 
 #include "common/file_io.h"
@@ -262,10 +263,28 @@ MapperCheckpoint DecodeCheckpoint(const std::string& bytes, const std::string& s
 }
 
 void SaveCheckpoint(const std::string& path, const MappingSession& session) {
-  WriteFileAtomically(path, EncodeCheckpoint(CheckpointOf(session)));
+  WriteFileAtomically(path, EncodeCheckpoint(CheckpointOf(session)), {.durable = true, .keep_previous = true});
 }
 
 MapperCheckpoint LoadCheckpoint(const std::string& path) { return DecodeCheckpoint(ReadFile(path), path); }
+
+MapperCheckpoint LoadCheckpointOrPrevious(const std::string& path, std::string* warning) {
+  try {
+    return LoadCheckpoint(path);
+  } catch (const InputError& latest) {
+    const std::string previous = PreviousFilePath(path);
+    if (!std::filesystem::exists(previous)) throw;
+    try {
+      MapperCheckpoint c = LoadCheckpoint(previous);
+      if (warning)
+        *warning = std::string(latest.what()) + ": resuming from the checkpoint before it, " + previous + " (" +
+                   std::to_string(c.scans.size()) + " scans)";
+      return c;
+    } catch (const InputError& before) {
+      throw InputError(std::string(latest.what()) + "; and the one before it: " + before.what());
+    }
+  }
+}
 
 MappingSession RestoreSession(const MappingSessionOptions& options, MapperCheckpoint c) {
   ContourMap map(options.mapper.grid_cell_size);

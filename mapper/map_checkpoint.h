@@ -11,8 +11,12 @@
 //   (finite numbers, contour sizes, unique ids below next_id, indices in range; contour
 //   geometry within contour_map_io.h's limits, positions within kMaxMapCoordinate, scan
 //   points within 1 km of their vehicle: what no survey makes is refused) and throws
-//   InputError with one line naming the file and what is wrong. Saving is atomic
-//   (WriteFileAtomically): a crash mid-write leaves the previous checkpoint.
+//   InputError with one line naming the file and what is wrong. Saving is atomic and durable
+//   (WriteFileAtomically: temp file, fsync, rename, fsync of the folder), and the checkpoint
+//   it replaces stays as FILE.prev: a crash mid-write leaves the previous checkpoint, and a
+//   checkpoint found torn or corrupt all the same (a power cut on a disk that lied about
+//   its flush, a copy cut short) is replaced by FILE.prev at the restart (issue 16, "a torn
+//   checkpoint ... is detected and the last good one used").
 
 #include <string>
 #include <vector>
@@ -35,6 +39,9 @@ MapperCheckpoint DecodeCheckpoint(const std::string& bytes, const std::string& s
 
 void SaveCheckpoint(const std::string& path, const MappingSession& session);
 MapperCheckpoint LoadCheckpoint(const std::string& path);
+// LoadCheckpoint(path), or when that file is torn or corrupt, LoadCheckpoint(path.prev) with
+// `warning` set to one line saying why; throws InputError naming both when neither loads.
+MapperCheckpoint LoadCheckpointOrPrevious(const std::string& path, std::string* warning);
 // A session resumed from a checkpoint, with the given options (grid cell size included).
 MappingSession RestoreSession(const MappingSessionOptions& options, MapperCheckpoint checkpoint);
 

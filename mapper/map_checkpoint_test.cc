@@ -183,5 +183,47 @@ TEST_F(MapCheckpointTest, DamagedFilesGiveOneLineErrors) {
   EXPECT_THROW(LoadCheckpoint((dir_ / "missing.bin").string()), InputError);
 }
 
+// Issue 16: a checkpoint torn by a power cut (a disk that lied about its flush, a copy cut
+// short) is detected and the one before it used; with neither whole, one line names both.
+TEST_F(MapCheckpointTest, ATornCheckpointIsDetectedAndTheOneBeforeItUsed) {
+  const std::string path = (dir_ / "torn.ckpt").string();
+  SaveCheckpoint(path, session_);
+  const size_t scans_before = session_.mapper().scans().size();
+  for (size_t k = 5; k < kDrive.size(); ++k) Add(session_, k);
+  ASSERT_GT(session_.mapper().scans().size(), scans_before);
+  SaveCheckpoint(path, session_);
+  std::string warning;
+  EXPECT_EQ(LoadCheckpointOrPrevious(path, &warning).scans.size(), session_.mapper().scans().size());
+  EXPECT_EQ(warning, "");
+
+  // Torn: the second half of the newest file never reached the disk.
+  const std::string whole = ReadFile(path);
+  std::ofstream(path, std::ios::binary | std::ios::trunc) << whole.substr(0, whole.size() / 2);
+  const MapperCheckpoint previous = LoadCheckpointOrPrevious(path, &warning);
+  EXPECT_EQ(previous.scans.size(), scans_before);
+  EXPECT_NE(warning.find(path + ": "), std::string::npos) << warning;
+  EXPECT_NE(warning.find("resuming from the checkpoint before it, " + path + ".prev (" + std::to_string(scans_before) +
+                         " scans)"),
+            std::string::npos)
+      << warning;
+  EXPECT_EQ(warning.find('\n'), std::string::npos);
+
+  // Both damaged: an error naming both, nothing invented.
+  std::string prev = ReadFile(path + ".prev");
+  prev[prev.size() / 2] ^= 0x5a;
+  std::ofstream(path + ".prev", std::ios::binary | std::ios::trunc) << prev;
+  try {
+    LoadCheckpointOrPrevious(path, &warning);
+    ADD_FAILURE() << "a torn checkpoint and a corrupt previous one loaded";
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find(path + ": "), std::string::npos) << what;
+    EXPECT_NE(what.find("the one before it: " + path + ".prev: "), std::string::npos) << what;
+  }
+  // Without a previous file the error is the file's own.
+  std::filesystem::remove(path + ".prev");
+  EXPECT_THROW(LoadCheckpointOrPrevious(path, &warning), InputError);
+}
+
 }  // namespace
 }  // namespace minenav::mapper

@@ -72,9 +72,9 @@ if(EXISTS "${CMAKE_SOURCE_DIR}/tests/child_process.cc")
   add_test(NAME mapper.live_stop_with_backlog
     COMMAND "${CMAKE_SOURCE_DIR}/tests/bus/private_net.sh" --port 7792 --
             $<TARGET_FILE:contour_mapper_live_stop_test> --gtest_filter=ContourMapperLiveStopTest.SigtermWithABacklogExitsAtOnceAndTheCheckpointKeepsTheInsertedScans)
-  add_test(NAME mapper.live_kill9_keeps_the_checkpoint
+  add_test(NAME mapper.live_kill9_loses_no_inserted_scan
     COMMAND "${CMAKE_SOURCE_DIR}/tests/bus/private_net.sh" --port 7793 --
-            $<TARGET_FILE:contour_mapper_live_stop_test> --gtest_filter=ContourMapperLiveStopTest.KillNineWithTheDefaultOptionsLosesAtMostTheLastFewScans)
-  set_tests_properties(mapper.live_backlog_bounded mapper.live_stop_with_backlog mapper.live_kill9_keeps_the_checkpoint
+            $<TARGET_FILE:contour_mapper_live_stop_test> --gtest_filter=ContourMapperLiveStopTest.KillNineLosesNoInsertedScan)
+  set_tests_properties(mapper.live_backlog_bounded mapper.live_stop_with_backlog mapper.live_kill9_loses_no_inserted_scan
                        PROPERTIES TIMEOUT 300 LABELS bus)
 endif()
