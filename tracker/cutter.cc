@@ -67,7 +67,7 @@ void DeclareOptions(OptionScope s, CutterOptions& o) {
   s.AddDouble("state_timeout", &o.state_timeout, "s", "no CUTTER_STATE for this long stops the cut", 0.1, 600.0);
   s.AddDouble("resend_period", &o.resend_period, "s", "repeat an unacknowledged cutter command this often", 0.05,
               60.0);
-  s.AddDouble("command_timeout", &o.command_timeout, "s", "validity of each DRIVE_COMMAND", 0.01, 10.0);
+  s.AddDouble("command_timeout", &o.command_timeout, "s", "validity of each DRIVE_COMMAND (two control periods: stopped within 200 ms of a missing one)", 0.01, 10.0);
   s.AddInt("max_cycles", &o.max_cycles, "sump-shear cycles at most per cut", 1, 1000);
 }
 

@@ -63,7 +63,7 @@ struct CutterOptions {
   double stall_distance = 0.02;    // m ... with less advance than this is a stall
   double state_timeout = 2.0;      // s without CUTTER_STATE stops the cut
   double resend_period = 1.0;      // s between repeats of an unacknowledged cutter command
-  double command_timeout = 0.3;    // s, validity of each drive command
+  double command_timeout = 0.2;    // s, validity of each drive command (two 10 Hz periods, as the tracker)
   int max_cycles = 20;             // sump-shear cycles at most
 };
 

@@ -122,7 +122,7 @@ TEST(CutterTest, SquaresUpByTurningInPlaceThenTramsToTheFace) {
   EXPECT_EQ(c.status().step, "approaching the face");
   EXPECT_EQ(out.drive->mode, DriveCommand::Mode::kVelocity);
   EXPECT_DOUBLE_EQ(out.drive->v, 0.05);
-  EXPECT_DOUBLE_EQ(out.drive->timeout, 0.3);
+  EXPECT_DOUBLE_EQ(out.drive->timeout, CutterOptions{}.command_timeout);
   // No appendage state for longer than state_timeout: stopped.
   out = step(Pose2(10.5, 0, 0.001), 2.4, 2'500'000, 2'500'000);
   EXPECT_EQ(c.status().message, "stopped: no CUTTER_STATE for 2.0 s");

@@ -106,7 +106,7 @@ void DeclareOptions(OptionScope s, PathTrackerOptions& o) {
   s.AddDouble("sample_step", &o.sample_step, "m", "spacing of the path's samples", 0.001, 1.0);
   s.AddDouble("search_window", &o.search_window, "m", "stretch of a run searched ahead for the nearest sample", 0.01,
               100.0);
-  s.AddDouble("command_timeout", &o.command_timeout, "s", "validity of each drive command", 0.01, 60.0);
+  s.AddDouble("command_timeout", &o.command_timeout, "s", "validity of each drive command (two control periods: stopped within 200 ms of a missing one)", 0.01, 60.0);
 }
 
 TrackerMap::TrackerMap(std::vector<Segment> segments, const Footprint& footprint, double margin, double turn_radius)

@@ -72,7 +72,10 @@ struct PathTrackerOptions {
   double collision_margin = 0.0;        // m, clearance the checked motion must keep from the walls
   double sample_step = 0.02;            // m between the path's samples
   double search_window = 1.0;           // m along the run searched for the nearest sample
-  double command_timeout = 0.3;         // s, validity of each command
+  // s, validity of each command: two periods at 10 Hz, so a tracker that dies leaves the vehicle
+  // stopped within 200 ms of its next command being overdue (issue 16; one late tick is
+  // forgiven). bus.vehicle_stops_within_200ms_of_a_loss measures it.
+  double command_timeout = 0.2;
 };
 
 // "" when usable, else one line naming the option (and, for options that contradict each

@@ -127,7 +127,7 @@ TEST(PathTrackerNodeTest, DrivesAPathAndSaysDoneForItsRequest) {
   EXPECT_EQ(h.Statuses().front().state, task_status_t::ACTIVE);
   EXPECT_EQ(h.LastCommand().mode, drive_command_t::VELOCITY);
   EXPECT_GT(h.LastCommand().v, 0.0);
-  EXPECT_FLOAT_EQ(static_cast<float>(h.LastCommand().timeout), 0.3f);
+  EXPECT_FLOAT_EQ(static_cast<float>(h.LastCommand().timeout), static_cast<float>(PathTrackerOptions{}.command_timeout));
   // The odometry says the vehicle went the 2 m: done.
   h.Step(100'000, Pose2(2.0, 0, 0));
   h.Step(100'000, Pose2(2.0, 0, 0));  // the timer runs before the messages of a spin

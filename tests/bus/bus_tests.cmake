@@ -39,6 +39,13 @@ add_test(NAME bus.vehicle_stops_at_its_stale_limit
   COMMAND "${MINENAV_PRIVATE_NET}" --port 7790 -- $<TARGET_FILE:vehicle_safety_bus_test>
           --gtest_filter=VehicleSafetyBusTest.OneCommandWithAHugeTimeoutStopsAtTheVehiclesStaleLimit)
 set_tests_properties(bus.vehicle_stops_at_its_stale_limit PROPERTIES TIMEOUT 120 LABELS bus)
+# Issue 16: the vehicle stops within 200 ms of losing pose, path or commands (port 7805).
+target_compile_definitions(vehicle_safety_bus_test PRIVATE MINENAV_PATH_TRACKER_BIN="$<TARGET_FILE:path_tracker>")
+add_dependencies(vehicle_safety_bus_test path_tracker)
+add_test(NAME bus.vehicle_stops_within_200ms_of_a_loss
+  COMMAND "${MINENAV_PRIVATE_NET}" --port 7805 -- $<TARGET_FILE:vehicle_safety_bus_test>
+          --gtest_filter=VehicleStopBusTest.*)
+set_tests_properties(bus.vehicle_stops_within_200ms_of_a_loss PROPERTIES TIMEOUT 120 LABELS bus)
 
 # Issue 11: hostile input on the bus (array counts that lie, timestamps that lie) against
 # the live contour_mapper and iconic_pose_estimator, each under a memory bound
