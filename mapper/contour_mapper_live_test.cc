@@ -55,7 +55,14 @@ class Listener {
  public:
   explicit Listener(const std::string& url) : bus_(url, 1000) {
     Subscribe<pose_estimate_t>(bus_, "POSE", [this](const pose_estimate_t& m) { poses.push_back(m); });
-    Subscribe<contour_map_t>(bus_, "CONTOUR_MAP", [this](const contour_map_t& m) { maps.push_back(m); });
+    // Each map once: an unchanged map sent again (--map-republish-period, for processes that
+    // start late) is counted apart.
+    Subscribe<contour_map_t>(bus_, "CONTOUR_MAP", [this](const contour_map_t& m) {
+      if (!maps.empty() && m.version == maps.back().version && m.utime == maps.back().utime)
+        ++map_repeats;
+      else
+        maps.push_back(m);
+    });
     Subscribe<heartbeat_t>(bus_, "HEARTBEAT", [this](const heartbeat_t& m) {
       if (m.process == "contour_mapper") heartbeat_pids.push_back(m.pid);
     });
@@ -71,6 +78,7 @@ class Listener {
 
   std::vector<pose_estimate_t> poses;
   std::vector<contour_map_t> maps;
+  int map_repeats = 0;
   std::vector<int> heartbeat_pids;
 
  private:

@@ -40,6 +40,10 @@ void DeclareOptions(OptionScope s, ContourMapperNodeOptions& o) {
   s.AddBool("checkpoint_inserts", &o.checkpoint_inserts,
             "live, with --checkpoint: also save it at every inserted scan, before its POSE goes out, so that a "
             "kill -9 loses no inserted scan (batch runs ignore it)");
+  s.AddDouble("map_republish_period", &o.map_republish_period, "s",
+              "live: CONTOUR_MAP sent again when unchanged this long, and at the start when resumed, so a process "
+              "that restarts gets the map without waiting for the vehicle to move; 0 = only on a change",
+              0.0, 3600.0);
   s.AddString("load_map", &o.load_map, "start from this contour-map JSON (localise against it, keep extending)");
   s.AddString("save_map", &o.save_map, "contour-map JSON written at every checkpoint and at shutdown");
   s.schema().AddChannel(s.Key("scan_channel"), &o.scan_channel, "subscribes", "ladar_scan_t", "scans");
@@ -341,6 +345,11 @@ ContourMapperNode::ContourMapperNode(NodeRuntime& runtime, ContourMapperNodeOpti
     worker_ = std::make_unique<BackgroundWorker<SyncedScan, Answer>>(
         static_cast<size_t>(options_.worker_queue_capacity), [this](SyncedScan& s) { return core_->HandleOrLog(s); });
     runtime_.AddTimer(0.01, [this](int64_t) { PublishWorkerOutbox(); });
+    if (options_.map_republish_period > 0) {
+      // A resumed or loaded map goes out at once: nothing else would send it before an insert.
+      if (core_->session().map().NumContours() > 0) Publish({{core_->MapMessage(runtime_.NowUtime())}, {}});
+      runtime_.AddTimer(options_.map_republish_period / 4, [this](int64_t now) { RepublishMap(now); });
+    }
   }
   runtime_.OnShutdown([this] { Finish(); });
 }
@@ -424,8 +433,19 @@ void ContourMapperNode::MapNow(const SyncedScan& s) {
 
 void ContourMapperNode::Publish(const Answer& answer) {
   Bus& bus = runtime_.bus();
-  for (const Publication& pub : answer.publications)
+  for (const Publication& pub : answer.publications) {
     bus.Publish(pub.channel, pub.bytes.data(), static_cast<int>(pub.bytes.size()));
+    if (!batch_ && pub.channel == options_.map_channel) {
+      last_map_ = pub.bytes;
+      last_map_utime_ = runtime_.NowUtime();
+    }
+  }
+}
+
+void ContourMapperNode::RepublishMap(int64_t now_utime) {
+  if (last_map_.empty() || now_utime - last_map_utime_ < std::llround(options_.map_republish_period * 1e6)) return;
+  runtime_.bus().Publish(options_.map_channel, last_map_.data(), static_cast<int>(last_map_.size()));
+  last_map_utime_ = now_utime;
 }
 
 void ContourMapperNode::PublishWorkerOutbox() {

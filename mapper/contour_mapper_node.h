@@ -50,6 +50,11 @@ struct ContourMapperNodeOptions {
   // Every 10 is about 1 s of 10 Hz scans: a crash (kill -9, power) loses at most that, and a
   // checkpoint of a few MB writes in a few hundredths of a second (mapper/README.md).
   int checkpoint_every = 10;
+  // s; live, CONTOUR_MAP is sent again when it has not changed for this long (0 = only on a
+  // change), and at the start when resumed from a checkpoint or a map: a process that starts
+  // late or restarts (the planner after kill -9) gets the map without waiting for the
+  // vehicle to move. Receivers ignore a version they have (path and task planner, tracker).
+  double map_republish_period = 2.0;
   // Live: also saved at every inserted scan (every metre or so of driving), before the scan's
   // POSE and map go out, so that a kill -9 loses no inserted scan (issue 16). Batch runs
   // ignore it: the log they replay is their record.
@@ -113,6 +118,7 @@ class ContourMapperNode {
   void MapNow(const SyncedScan& s);
   void Publish(const Answer& answer);
   void PublishWorkerOutbox();
+  void RepublishMap(int64_t now_utime);
   void AnswerUnmapped(const LadarScan& scan, const std::string& why);
   void StopWorker();
   void Finish();
@@ -131,6 +137,8 @@ class ContourMapperNode {
   std::pair<int8_t, std::string> worker_status_;  // of the last answer the worker made
   int64_t scans_received_ = 0, no_odometry_ = 0, not_mapped_at_stop_ = 0;
   bool kept_partial_ = false;  // batch: the outputs are FILE.partial
+  std::vector<uint8_t> last_map_;  // live: the last CONTOUR_MAP sent (node thread), for late joiners
+  int64_t last_map_utime_ = 0;     // when it was sent (the runtime's clock)
   const std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
 };
 

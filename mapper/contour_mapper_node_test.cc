@@ -280,6 +280,14 @@ class ContourMapperNodeLiveTest : public TempDir {
     runtime->Shutdown();
   }
   std::vector<heartbeat_t> Heartbeats() const { return bus->Decoded<heartbeat_t>("HEARTBEAT"); }
+  // CONTOUR_MAP messages that carried a change: an unchanged map sent again for processes
+  // that start late (map_republish_period) repeats the one before it byte for byte.
+  size_t MapChanges() const {
+    size_t changes = 0;
+    const auto maps = bus->PublishedOn("CONTOUR_MAP");
+    for (size_t i = 0; i < maps.size(); ++i) changes += i == 0 || maps[i].data != maps[i - 1].data;
+    return changes;
+  }
 
   ManualClock clock{kT0};
   FakeBus* bus = nullptr;
@@ -307,11 +315,11 @@ TEST_F(ContourMapperNodeLiveTest, AnswersEveryScanAsTheSessionDoesAndWritesTheOu
     EXPECT_EQ(poses[k].pose.x, reference.results[k].pose.x) << k;
     EXPECT_EQ(poses[k].pose.theta, reference.results[k].pose.theta) << k;
   }
-  EXPECT_EQ(bus->PublishedOn("CONTOUR_MAP").size(), 6u);  // every scan inserted (defaults)
+  EXPECT_EQ(MapChanges(), 6u);  // every scan inserted (defaults)
   EXPECT_FALSE(fs::exists(o.map_out));
   Stop();
   EXPECT_EQ(node->scans_not_mapped_at_stop(), 0);
-  EXPECT_EQ(bus->PublishedOn("CONTOUR_MAP").size(), 7u);  // and the refined map
+  EXPECT_EQ(MapChanges(), 7u);  // and the refined map
   EXPECT_GE(mapper::LoadContourMapJson(o.map_out).NumContours(), 1);
   EXPECT_GE(mapper::LoadContourMapJson(o.save_map).NumContours(), 1);
   EXPECT_EQ(Heartbeats().back().state, heartbeat_t::STOPPING);
@@ -331,7 +339,7 @@ TEST_F(ContourMapperNodeLiveTest, RefusedInvalidAndUnpairedScansAreAnswered) {
   EXPECT_FALSE(refused[1].converged);
   EXPECT_EQ(refused[1].scan_id, 1);
   EXPECT_FALSE(refused[1].status.empty());
-  EXPECT_EQ(bus->PublishedOn("CONTOUR_MAP").size(), 1u);  // only the first scan changed the map
+  EXPECT_EQ(MapChanges(), 1u);  // only the first scan changed the map
   // The next heartbeat says so.
   clock.Advance(1'000'000);
   runtime->SpinOnce(0);
@@ -423,7 +431,7 @@ TEST_F(ContourMapperNodeLiveTest, AStopWithABacklogAnswersTheQueuedScansAndSkips
   const mapper::MapperCheckpoint checkpoint = mapper::LoadCheckpoint(o.checkpoint);
   EXPECT_EQ(static_cast<int>(checkpoint.scans.size()), mapped);
   // No refinement ran: every CONTOUR_MAP is an insert's; the map is written if there is one.
-  EXPECT_EQ(bus->PublishedOn("CONTOUR_MAP").size(), static_cast<size_t>(mapped));
+  EXPECT_EQ(MapChanges(), static_cast<size_t>(mapped));
   EXPECT_EQ(fs::exists(o.map_out), mapped > 0);
 }
 
@@ -434,6 +442,7 @@ TEST_F(ContourMapperNodeLiveTest, TheCheckpointIsWrittenEveryNHandledScans) {
   ContourMapperNodeOptions o;
   o.checkpoint = Path("run.ckpt");
   o.checkpoint_every = 2;
+  o.checkpoint_inserts = false;  // the cadence alone (every scan here is an insert)
   o.run.final_refinement_rounds = 0;
   Start(o);
   auto checkpointed = [&] {
@@ -452,6 +461,77 @@ TEST_F(ContourMapperNodeLiveTest, TheCheckpointIsWrittenEveryNHandledScans) {
   const mapper::MappingSession resumed = OpenMappingSession(again);
   EXPECT_EQ(resumed.mapper().scans().size(), 5u);
   EXPECT_EQ(resumed.state().inserted, 5);
+}
+
+// Live, every inserted scan is in the checkpoint before its POSE goes out (issue 16: a kill -9
+// loses no inserted scan), whatever the cadence.
+TEST_F(ContourMapperNodeLiveTest, EveryInsertedScanIsCheckpointedBeforeItsPoseGoesOut) {
+  const Survey survey(4);
+  ContourMapperNodeOptions o;
+  o.checkpoint = Path("inserts.ckpt");
+  o.checkpoint_every = 1000;
+  o.run.final_refinement_rounds = 0;
+  Start(o);
+  for (size_t k = 0; k < survey.scans.size(); ++k) {
+    Inject(survey.scans[k], survey.odometry[k]);
+    const auto poses = AwaitPoses(k + 1);
+    ASSERT_EQ(poses.back().status.rfind("ok: inserted", 0), 0u) << poses.back().status;
+    EXPECT_EQ(mapper::LoadCheckpoint(o.checkpoint).scans.size(), k + 1) << "after scan " << k;
+  }
+  Stop();
+}
+
+// A process that starts late or restarts (the planner after kill -9) needs the map while the
+// vehicle stands: live, an unchanged map goes out again every map_republish_period, and a
+// resumed one at the start.
+TEST_F(ContourMapperNodeLiveTest, AnUnchangedMapIsSentAgainForProcessesThatStartLate) {
+  const Survey survey(2);
+  ContourMapperNodeOptions o;
+  o.checkpoint = Path("late.ckpt");
+  o.run.final_refinement_rounds = 0;
+  Start(o);
+  Inject(survey.scans[0], survey.odometry[0]);
+  AwaitPoses(1);
+  const auto sent = bus->PublishedOn("CONTOUR_MAP");
+  ASSERT_GE(sent.size(), 1u);
+  const size_t before = sent.size();
+  // Standing still: 5 s of clock in 10 ms steps, two more copies of the same bytes.
+  for (int i = 0; i < 500; ++i) {
+    clock.Advance(10'000);
+    runtime->SpinOnce(0);
+  }
+  const auto after = bus->PublishedOn("CONTOUR_MAP");
+  EXPECT_GE(after.size(), before + 2);
+  EXPECT_LE(after.size(), before + 3);
+  for (size_t i = before; i < after.size(); ++i) EXPECT_EQ(after[i].data, sent.back().data) << i;
+  EXPECT_EQ(MapChanges(), 1u);
+  Stop();
+  node.reset();
+  runtime.reset();
+
+  // Resumed from the checkpoint: the map goes out before any scan.
+  Start(o);
+  ASSERT_GE(bus->PublishedOn("CONTOUR_MAP").size(), 1u) << "the resumed map was not sent at the start";
+  const auto resumed = bus->Decoded<contour_map_t>("CONTOUR_MAP").front();
+  EXPECT_EQ(resumed.num_scans, 1);
+  EXPECT_GE(resumed.num_contours, 1);
+  Stop();
+  node.reset();
+  runtime.reset();
+
+  // 0: only on a change.
+  o.map_republish_period = 0;
+  o.checkpoint.clear();
+  Start(o);
+  Inject(survey.scans[0], survey.odometry[0]);
+  AwaitPoses(1);
+  const size_t once = bus->PublishedOn("CONTOUR_MAP").size();
+  for (int i = 0; i < 500; ++i) {
+    clock.Advance(10'000);
+    runtime->SpinOnce(0);
+  }
+  EXPECT_EQ(bus->PublishedOn("CONTOUR_MAP").size(), once);
+  Stop();
 }
 
 // ---------------------------------------------------------------------------------------
