@@ -69,7 +69,7 @@ void DeclareOptions(OptionScope scope, MissionEvaluationOptions& o) {
 
 // -------------------------------------------------------------------------------- figures
 
-TimeFigures MissionTimes(const MissionRecord& log) {
+TimeFigures MissionTimes(const MissionRecord& log, const MissionReport* report) {
   TimeFigures t;
   t.log_s = log.events > 0 ? Seconds(log.first_utime, log.last_utime) : 0.0;
   std::optional<int64_t> start, end, explore_start, explore_end;
@@ -93,6 +93,12 @@ TimeFigures MissionTimes(const MissionRecord& log) {
   if (!log.mission_status.empty()) {
     t.final_state = ToString(log.mission_status.back().state);
     t.final_message = log.mission_status.back().message;
+  }
+  if (report && !report->state.empty() && !end) {
+    t.final_state = report->state;
+    t.final_message = report->message;
+    if (start && (report->state == "DONE" || report->state == "FAILED" || report->state == "ABORTED"))
+      t.mission_s = Seconds(*start, log.last_utime);  // ended after the log's last status
   }
   return t;
 }
@@ -216,7 +222,7 @@ MissionFigures EvaluateMission(const MissionInputs& in, const MissionEvaluationO
   MissionFigures f;
   const MissionReport* mission = in.mission ? &*in.mission : nullptr;
   f.have_mission = mission != nullptr;
-  f.time = MissionTimes(in.log);
+  f.time = MissionTimes(in.log, mission);
 
   std::vector<mapper::Contour> contours;
   for (const auto& [id, c] : in.map.contours()) contours.push_back(c);

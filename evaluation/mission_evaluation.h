@@ -54,7 +54,9 @@ struct TimeFigures {
   std::string final_state;             // the last MISSION_STATUS state ("" when none)
   std::string final_message;
 };
-TimeFigures MissionTimes(const MissionRecord& log);
+// `report`, the coordinator's own (--report-out), when there is one: its end state wins when the
+// log has none (the logger may stop before the coordinator's last MISSION_STATUS is heard).
+TimeFigures MissionTimes(const MissionRecord& log, const MissionReport* report = nullptr);
 
 struct MapFigures {
   mapper::MapDeviation deviation;  // contours against the final true walls

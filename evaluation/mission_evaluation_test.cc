@@ -341,6 +341,20 @@ TEST(MissionTimes, ExplorationAndMissionFromTheStatusLines) {
   EXPECT_EQ(u.exploration_result, "unfinished");
   EXPECT_EQ(u.final_state, "PAUSED");
   EXPECT_FALSE(MissionTimes(MissionRecord()).mission_s);
+  // The log ended before the coordinator's last status (the logger stopped with the fleet):
+  // the coordinator's report says how it ended (a mission that FAILED was reported RUNNING).
+  log.mission_status.resize(3);
+  MissionReport report;
+  report.state = "FAILED";
+  report.message = "mission failed: exploration: 3 stations in a row not reached";
+  const TimeFigures v = MissionTimes(log, &report);
+  EXPECT_EQ(v.final_state, "FAILED");
+  EXPECT_EQ(v.final_message, report.message);
+  ASSERT_TRUE(v.mission_s);
+  EXPECT_DOUBLE_EQ(*v.mission_s, 89.0);  // from the first status past IDLE (1 s) to the log's end (90 s)
+  // An end in the log wins over the report.
+  log.mission_status.push_back(Status(60, MissionState::kAborted, BtStatus::kFailure));
+  EXPECT_EQ(MissionTimes(log, &report).final_state, "ABORTED");
 }
 
 TEST(Refusals, EachProblemOnceWithItsFirstLine) {
