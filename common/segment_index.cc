@@ -88,6 +88,7 @@ StaticSegmentIndex::StaticSegmentIndex(std::vector<Segment> segments, double cel
   Eigen::Vector2d lo = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
   std::vector<double> lengths;
   lengths.reserve(segments_.size());
+  double crossed = 0.0;  // m: the segments' lengths along both axes (|dx| + |dy| summed)
   for (size_t i = 0; i < segments_.size(); ++i) {
     const Segment& s = segments_[i];
     if (!Listable(s)) {
@@ -97,6 +98,7 @@ StaticSegmentIndex::StaticSegmentIndex(std::vector<Segment> segments, double cel
     lo = lo.cwiseMin(s.a).cwiseMin(s.b);
     hi = hi.cwiseMax(s.a).cwiseMax(s.b);
     lengths.push_back(s.length());
+    crossed += (s.b - s.a).cwiseAbs().sum();
   }
   cell_start_.assign(1, 0);
   frame_.nx = frame_.ny = 0;
@@ -106,6 +108,10 @@ StaticSegmentIndex::StaticSegmentIndex(std::vector<Segment> segments, double cel
     std::nth_element(lengths.begin(), lengths.begin() + static_cast<std::ptrdiff_t>(lengths.size() / 2), lengths.end());
     cell_size = std::max(0.5, 2.0 * lengths[lengths.size() / 2]);
   }
+  // The segments' cells within their budget: a segment touches at most 2 (|dx| + |dy|) / cell
+  // + 4 cells (see kMaxLengthCells).
+  const double length_cells = std::max(kMaxLengthCells, kLengthCellsPerSegment * static_cast<double>(lengths.size()));
+  cell_size = std::max(cell_size, 2.0 * crossed / length_cells);
   // The grid covers the segments' box with half a cell around it, within the cell budget.
   const Eigen::Vector2d extent = (hi - lo).cwiseMax(Eigen::Vector2d(1e-3, 1e-3));
   auto cells = [&](double c) { return (extent.x() / c + 2.0) * (extent.y() / c + 2.0); };

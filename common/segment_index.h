@@ -193,6 +193,17 @@ class StaticSegmentIndex {
   static constexpr double kMaxCells = 4e6;
   // m: a segment with a coordinate beyond this is not listed by cell (every query tests it).
   static constexpr double kMaxCoordinate = 1e12;
+  // What the segments' lengths may cost, whatever the map (issue 16: the fuzz targets met a
+  // map of one wall 8e10 m long beside short ones: in a grid of 3 x 1.9e6 cells the wall
+  // alone touched 1.9e6 cells, 40 s in the fuzz build). A segment touches at most
+  // 2 (|dx| + |dy|) / cell + 4 cells (the cells of each column it crosses, grown by the
+  // margin); the cell is chosen so that the first term, summed over the listed segments, is at
+  // most the larger of kMaxLengthCells and kLengthCellsPerSegment per segment. So entries()
+  // <= max(kMaxLengthCells, kLengthCellsPerSegment n) + 4 n for n listed segments: linear in
+  // the input. A real map (segments of about the median length, cells of twice it: ~1.3 per
+  // segment) never reaches it, so its cells are what they were.
+  static constexpr double kMaxLengthCells = 131072.0;
+  static constexpr double kLengthCellsPerSegment = 8.0;
 
   // cell_size in m; 0 picks one from the segments (twice the median segment length, at
   // least 0.5 m). Either way the grid has at most ~kMaxCells cells. It covers the box of

@@ -321,6 +321,60 @@ TEST(StaticSegmentIndexTest, HugeAndNonFiniteSegmentsStayBounded) {
   for (int i = 0; i < 2000; ++i) ASSERT_TRUE(SameHit(coarse, Eigen::Vector2d(uo(rng), uo(rng)), ub(rng), 80.0));
 }
 
+// Found by the fuzz targets (issue 16, ladar_driver and path_planner): a map of long walls far
+// apart. One wall 8e10 m long beside short ones made a grid of 3 x 1.9e6 cells in which the
+// wall alone touched 1.9e6 cells (40 s in the fuzz build). Whatever the walls, the (cell,
+// segment) entries stay within the length budget plus 4 per segment, and the casts stay exact.
+TEST(StaticSegmentIndexTest, LongWallsFarApartTouchABoundedNumberOfCells) {
+  auto bound = [](size_t n) {
+    const double dn = static_cast<double>(n);
+    return std::max(StaticSegmentIndex::kMaxLengthCells, StaticSegmentIndex::kLengthCellsPerSegment * dn) + 4.0 * dn;
+  };
+  // The fuzz input's shape: short walls in x in [0, 20], one wall down to y = -8.2e10.
+  std::vector<Segment> thin;
+  for (int k = 0; k < 10; ++k) thin.emplace_back(2.0 * k, 0.0, 2.0 * k + 1.0, 0.5);
+  thin.emplace_back(0.0, -8.24634e10, 20.0, 0.0);
+  thin.emplace_back(20.0, -8.2e10, 0.0, -1.0);
+  // Long walls far apart: 40 walls of 1e6 m, 1e4 m apart, both ways, and diagonals.
+  std::vector<Segment> walls;
+  for (int k = 0; k < 20; ++k) {
+    walls.emplace_back(0.0, 1e4 * k, 1e6, 1e4 * k + 3.0);
+    walls.emplace_back(1e4 * k, 0.0, 1e4 * k - 7.0, 1e6);
+  }
+  for (int k = 0; k < 10; ++k) walls.emplace_back(0.0, 1e4 * k, 1e6, 1e6 - 1e4 * k);
+  for (const std::vector<Segment>* world : {&thin, &walls}) {
+    for (const double cell : {0.0, 0.2}) {
+      const StaticSegmentIndex grid(*world, cell);
+      EXPECT_LE(static_cast<double>(grid.entries()), bound(world->size())) << "cell " << grid.cell_size();
+      EXPECT_LE(static_cast<double>(grid.frame().size()), StaticSegmentIndex::kMaxCells * 1.1);
+      std::mt19937_64 rng(5);
+      std::uniform_real_distribution<double> ub(-kPi, kPi), ux(-10.0, 1e6), uy(-8e10, 1e6);
+      for (int i = 0; i < 300; ++i) {
+        const Eigen::Vector2d o(world == &thin ? 10.0 : ux(rng), world == &thin ? uy(rng) : ux(rng));
+        ASSERT_TRUE(SameHit(grid, o, ub(rng), 1e7));
+      }
+    }
+  }
+  // The bound is no figure of today: the cell walk of the old sizing touched far more.
+  const GridFrame old_thin{-0.5 * 42647.7, -8.24634e10 - 0.5 * 42647.7, 42647.7, 3, 1933599};
+  int64_t old_cells = 0;
+  ForEachCellTouched(old_thin, old_thin.Cells(), thin[10], kNoCellLimit, [&](int, int) { ++old_cells; });
+  EXPECT_GT(static_cast<double>(old_cells), bound(thin.size()));
+}
+
+// A real map (segments of about the median length) keeps the cells of twice the median: the
+// budget above never coarsens it.
+TEST(StaticSegmentIndexTest, AnOrdinaryMapKeepsCellsOfTwiceTheMedianLength) {
+  for (const uint32_t seed : {1u, 2u, 3u}) {
+    const std::vector<Segment> world = RandomWorld(seed);
+    std::vector<double> lengths;
+    for (const Segment& s : world) lengths.push_back(s.length());
+    std::nth_element(lengths.begin(), lengths.begin() + static_cast<std::ptrdiff_t>(lengths.size() / 2), lengths.end());
+    EXPECT_EQ(StaticSegmentIndex(world).cell_size(), std::max(0.5, 2.0 * lengths[lengths.size() / 2]));
+    EXPECT_EQ(StaticSegmentIndex(world, 0.3).cell_size(), 0.3);
+  }
+}
+
 // ---------------------------------------------------------------------------------------
 // Radius queries: a superset of brute force, exactly it after the distance filter
 

@@ -7,6 +7,7 @@
 
 #include <Eigen/Core>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <vector>
 
@@ -45,6 +46,9 @@ class ClearanceField {
     return v < max_distance_ ? v + OffsetFromCentre(p, ix, iy) : std::numeric_limits<double>::infinity();
   }
   double max_distance() const { return max_distance_; }
+  // Distances to a wall computed while building: each wall costs the cells of its band, about
+  // (length / cell + 1) (2 max_distance / cell + 5) (tests, tuning).
+  int64_t distance_tests() const { return distance_tests_; }
   const GridFrame& frame() const { return frame_; }
 
  private:
@@ -56,6 +60,7 @@ class ClearanceField {
   GridFrame frame_;
   double max_distance_;
   std::vector<double> values_;
+  int64_t distance_tests_ = 0;
 };
 
 }  // namespace minenav

@@ -157,6 +157,54 @@ TEST(Se2PlannerTest, AMapOfAbsurdExtentIsRefused) {
   EXPECT_EQ(absurd.Plan(Pose2(0, 0, 0), Pose2(0, 5, 0)).status, SearchStatus::kInvalidRequest);
 }
 
+// The clearance field against a test of every cell and every wall (what it computed before
+// it visited only each wall's band): equal bit for bit, with long diagonal walls.
+TEST(ClearanceFieldTest, EqualsTheDistanceOfEveryCellToEveryWall) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-30.0, 30.0);
+  std::vector<Segment> walls;
+  for (int i = 0; i < 25; ++i) walls.emplace_back(u(rng), u(rng), u(rng), u(rng));
+  walls.emplace_back(-30.0, -30.0, 30.0, 29.0);
+  walls.emplace_back(-30.0, 5.0, 30.0, 5.0);   // horizontal
+  walls.emplace_back(7.0, -30.0, 7.0, 30.0);   // vertical
+  walls.emplace_back(1.0, 1.0, 1.0, 1.0);      // a point
+  const GridFrame frame = GridFrame::Covering(Eigen::Vector2d(-30, -30), Eigen::Vector2d(30, 30), 0.2, 0.0);
+  const double cap = 4.3;
+  const ClearanceField field(walls, frame, cap);
+  for (int iy = 0; iy < frame.ny; ++iy)
+    for (int ix = 0; ix < frame.nx; ++ix) {
+      const Eigen::Vector2d centre = frame.CellMin(ix, iy).array() + 0.5 * frame.cell;
+      double expected = cap;
+      for (const Segment& w : walls) expected = std::min(expected, PointToSegmentDistance(centre, w));
+      ASSERT_EQ(field.AtCell(ix, iy), expected) << "cell " << ix << ", " << iy;
+    }
+}
+
+// Found by the fuzz targets (issue 16, path_planner): a map of long walls far apart. Each wall
+// lowered every cell of its bounding box: a diagonal across a 1 km map is 2.5e7 cells at
+// 0.2 m (minutes in the fuzz build). A wall now costs its band: (length / cell + 1) rows or
+// columns of at most 2 (max_distance + cell) / cell + 3 cells each.
+TEST(ClearanceFieldTest, ALongDiagonalWallCostsItsBandNotItsBox) {
+  const GridFrame frame = GridFrame::Covering(Eigen::Vector2d(0, 0), Eigen::Vector2d(1000, 1000), 0.2, 0.0);
+  const double cap = 6.0;
+  const std::vector<Segment> walls = {{0.0, 0.0, 1000.0, 1000.0}, {0.0, 1000.0, 1000.0, 0.0}, {0.0, 500.0, 1000.0, 510.0}};
+  const ClearanceField field(walls, frame, cap);
+  double band = 0.0;  // the bound for the three walls, row by row (|dy| / cell + band rows)
+  for (const Segment& w : walls) {
+    const double rows = std::abs(w.b.y() - w.a.y()) / frame.cell + 2.0 * (cap + frame.cell) / frame.cell + 3.0;
+    const double slope = std::abs(w.b.y() - w.a.y()) > 0.0 ? std::abs((w.b.x() - w.a.x()) / (w.b.y() - w.a.y())) : 1e9;
+    const double per_row = std::min(std::abs(w.b.x() - w.a.x()), 2.0 * (cap + frame.cell) * slope) / frame.cell +
+                           2.0 * (cap + frame.cell) / frame.cell + 3.0;
+    band += rows * per_row;
+  }
+  EXPECT_LE(static_cast<double>(field.distance_tests()), band);
+  EXPECT_LT(band, 0.1 * static_cast<double>(frame.size()));  // one diagonal's box alone was the frame
+  // And the band is all the wall changes: cells near it are lowered, one beyond it is not.
+  EXPECT_NEAR(field.At(Eigen::Vector2d(700.0, 700.0)), 0.0, 0.2);
+  EXPECT_NEAR(field.At(Eigen::Vector2d(700.0, 703.0)), 3.0 / std::sqrt(2.0), 0.2);
+  EXPECT_EQ(field.At(Eigen::Vector2d(700.0, 720.0)), cap);
+}
+
 TEST(FootprintCollisionTest, FieldAndExactTestAgreeWithBruteForce) {
   std::vector<Segment> map = planner_test::Crossing(6.0, 20.0);
   map.push_back({2.0, 8.0, 2.5, 9.0});  // a stone in the north arm
