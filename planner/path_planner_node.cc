@@ -78,6 +78,10 @@ void DeclareOptions(ConfigSchema& s, PathPlannerNodeOptions& o) {
   s.AddChannel("path_channel", &o.path_channel, "publishes", "path_t", "live: the answers, tagged with the request_id");
   s.AddChannel("drive_path_channel", &o.drive_path_channel, "subscribes", "path_t",
                "live: the path being driven (the coordinator's): the one re-checked and replanned when the map changes");
+  s.AddDouble("first_map_wait", &o.first_map_wait, "s",
+              "live: a request that comes before any map within this long of the start is left for its repeat "
+              "(a restarted planner gets the map within the mapper's republish period); later: answered 'no map'",
+              0.0, 3600.0);
   s.AddDouble("deadline", &o.deadline, "s", "live: wall time a search may take before it is stopped", 0.001, 3600.0);
   s.AddDouble("default_clearance", &o.default_clearance, "m", "live: clearance of a request that gives 0", 0.0, 10.0);
   s.AddDouble("max_clearance", &o.max_clearance, "m", "live: larger requested clearances are refused", 0.0, 10.0);
@@ -112,6 +116,7 @@ std::string ValidateRequest(const path_request_t& r, const PathPlannerNodeOption
 
 PathPlannerNode::PathPlannerNode(NodeRuntime& runtime, PathPlannerNodeOptions options, Footprint footprint)
     : runtime_(runtime),
+      first_map_wait_(options.first_map_wait, runtime.NowUtime(), !runtime.batch()),
       options_(std::move(options)),
       footprint_(std::move(footprint)),
       cache_(std::make_unique<PlannerCache>()) {
@@ -160,6 +165,10 @@ void PathPlannerNode::OnRequest(const path_request_t& request) {
     return;
   }
   if (!map_) {
+    if (first_map_wait_.LeaveForRepeat(now)) {
+      MINENAV_LOG(kInfo) << "request " << request.request_id << ": no map yet, left for its repeat";
+      return;
+    }
     Publish(NoPathToLcm(request.request_id, now, "no map: nothing received on " + options_.map_channel + " yet"));
     return;
   }

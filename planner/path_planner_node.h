@@ -41,6 +41,7 @@
 
 #include "common/config.h"
 #include "common/node/background_worker.h"
+#include "common/node/first_map_wait.h"
 #include "common/node/node_runtime.h"
 #include "minenav/contour_map_t.hpp"
 #include "minenav/path_request_t.hpp"
@@ -60,6 +61,9 @@ struct PathPlannerNodeOptions {
   std::string pose_channel = "POSE";
   std::string path_channel = "PATH";
   std::string drive_path_channel = "DRIVE_PATH";
+  // s after the start in which a request that comes before any map is left for its repeat
+  // (common/node/first_map_wait.h: a restarted planner gets the map within 2 s). Default 10.
+  double first_map_wait = 10.0;
   double deadline = 5.0;            // s of wall time per search (request or replan; not the planner's setup for a new map). Default 5.
   double default_clearance = 0.1;   // m, used when a request's clearance is 0. Default 0.1.
   double max_clearance = 2.0;       // m, larger requested clearances are refused. Default 2.
@@ -110,6 +114,7 @@ class PathPlannerNode {
   Answer Handle(Job& job);  // worker thread
 
   NodeRuntime& runtime_;
+  FirstMapWait first_map_wait_;
   PathPlannerNodeOptions options_;
   Footprint footprint_;
   std::shared_ptr<const MapSnapshot> map_;

@@ -145,8 +145,35 @@ TEST(PathPlannerNode, AStartWithinTheClearanceLeavesWithTheClearanceItHas) {
   EXPECT_NE(touching.status.find("start"), std::string::npos) << touching.status;
 }
 
+// A request before any map, within first_map_wait of the start, is left for its repeat (the
+// coordinator repeats; a restarted planner gets the map within the mapper's republish period);
+// its repeat after the map is planned; after the wait, "no map" is answered at once.
+TEST(PathPlannerNode, ARequestBeforeTheFirstMapIsLeftForItsRepeat) {
+  PathPlannerNodeOptions o;
+  o.first_map_wait = 10.0;
+  Harness h(o);
+  h.fake.bus().InjectMessage("PATH_REQUEST", Request(1, {7, 12, 0}, {33, 12, 0}, h.now()));
+  EXPECT_TRUE(h.WaitForPaths(1, 0.3).empty()) << "answered without a map";
+  h.fake.bus().InjectMessage("CONTOUR_MAP", MapMessage(1, {Room()}, h.now()));
+  h.fake.bus().InjectMessage("PATH_REQUEST", Request(1, {7, 12, 0}, {33, 12, 0}, h.now()));  // the repeat
+  const std::vector<path_t> paths = h.WaitForPaths(1);
+  ASSERT_EQ(paths.size(), 1u);
+  EXPECT_EQ(paths[0].request_id, 1);
+  EXPECT_TRUE(paths[0].feasible) << paths[0].status;
+
+  Harness late(o);
+  late.clock.Advance(11'000'000);  // past the wait: no map is the answer
+  late.fake.bus().InjectMessage("PATH_REQUEST", Request(2, {7, 12, 0}, {33, 12, 0}, late.now()));
+  const std::vector<path_t> refused = late.WaitForPaths(1);
+  ASSERT_EQ(refused.size(), 1u);
+  EXPECT_FALSE(refused[0].feasible);
+  EXPECT_EQ(refused[0].status.rfind("no map: nothing received on CONTOUR_MAP yet", 0), 0u) << refused[0].status;
+}
+
 TEST(PathPlannerNode, BadRequestsAreRefusedInOneLine) {
-  Harness h;
+  PathPlannerNodeOptions no_wait;
+  no_wait.first_map_wait = 0.0;  // "no map" answered at once
+  Harness h(no_wait);
   h.fake.bus().InjectMessage("PATH_REQUEST", Request(1, {7, 12, 0}, {33, 12, 0}, h.now()));  // no map yet
   h.fake.bus().InjectMessage("CONTOUR_MAP", MapMessage(1, {Room()}, h.now()));
   path_request_t nan = Request(2, {5, 10, 0}, {std::nan(""), 12, 0}, h.now());

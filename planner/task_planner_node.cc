@@ -64,6 +64,10 @@ void DeclareOptions(ConfigSchema& s, TaskPlannerNodeOptions& o) {
                "a line map: ADVANCE requests plan on the latest one there (walls only); empty = none");
   s.AddChannel("pose_channel", &o.pose_channel, "subscribes", "pose_estimate_t",
                "the vehicle's pose estimate: the places the ladar looked from");
+  s.AddDouble("first_map_wait", &o.first_map_wait, "s",
+              "live: a request that comes before any map within this long of the start is left for its repeat "
+              "(a restarted planner gets the map within the mapper's republish period); later: answered 'no map'",
+              0.0, 3600.0);
   s.AddChannel("plan_channel", &o.plan_channel, "publishes", "task_plan_t", "the answers, tagged with the request_id");
   s.AddString("footprint", &o.footprint,
               "W,L (m: a rectangle centred on the pose, x along L) or a JSON file {\"footprint\": [[x, y], ...]}");
@@ -97,6 +101,7 @@ std::string ValidateOptions(const TaskPlannerNodeOptions& o) {
 
 TaskPlannerNode::TaskPlannerNode(NodeRuntime& runtime, TaskPlannerNodeOptions options, Footprint footprint)
     : runtime_(runtime),
+      first_map_wait_(options.first_map_wait, runtime.NowUtime(), !runtime.batch()),
       options_(std::move(options)),
       footprint_(std::move(footprint)),
       cache_(std::make_unique<MapCache>()) {
@@ -167,6 +172,10 @@ void TaskPlannerNode::OnRequest(const task_request_t& m) {
   }
   std::shared_ptr<const MapSnapshot> map = contour_map_;
   if (r.kind == TaskRequestKind::kAdvance && line_map_) map = line_map_;
+  if (!map && first_map_wait_.LeaveForRepeat(runtime_.NowUtime())) {
+    MINENAV_LOG(kInfo) << "request " << r.request_id << ": no map yet, left for its repeat";
+    return;
+  }
   if (!map) {
     const std::string channels =
         options_.map_channel + (r.kind == TaskRequestKind::kAdvance && !options_.line_map_channel.empty()

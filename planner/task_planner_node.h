@@ -39,6 +39,7 @@
 
 #include "common/config.h"
 #include "common/node/background_worker.h"
+#include "common/node/first_map_wait.h"
 #include "common/node/node_runtime.h"
 #include "minenav/contour_map_t.hpp"
 #include "minenav/line_map_t.hpp"
@@ -61,6 +62,9 @@ struct TaskPlannerNodeOptions {
   std::string line_map_channel;  // "" = not subscribed; else ADVANCE plans on the latest LINE_MAP there. Default "".
   std::string pose_channel = "POSE";
   std::string plan_channel = "TASK_PLAN";
+  // s after the start in which a request that comes before any map is left for its repeat
+  // (common/node/first_map_wait.h). Default 10.
+  double first_map_wait = 10.0;
   // "W,L" (m: a rectangle centred on the pose) or a footprint JSON file: the path planner's
   // --footprint, the 3.3 x 10 m miner by default.
   std::string footprint = PlannerBatchFlags{}.footprint;
@@ -114,6 +118,7 @@ class TaskPlannerNode {
   Answer Plan(Job& job);  // worker thread (node thread in batch)
 
   NodeRuntime& runtime_;
+  FirstMapWait first_map_wait_;
   TaskPlannerNodeOptions options_;
   Footprint footprint_;
   std::shared_ptr<const MapSnapshot> contour_map_, line_map_;

@@ -204,8 +204,27 @@ TEST(TaskPlannerNode, SurveyNextGivesAStationBeforeTheFrontierThenCompleteOnAClo
   EXPECT_EQ(plans[1].request_id, 2);
 }
 
+// A request before any map, within first_map_wait of the start, is left for its repeat (a
+// task planner restarted mid-mission answered the coordinator's repeated request "no map" and
+// the mission FAILED); after the map its repeat is planned.
+TEST(TaskPlannerNode, ARequestBeforeTheFirstMapIsLeftForItsRepeat) {
+  TaskPlannerNodeOptions o;
+  o.first_map_wait = 10.0;
+  Harness h(o);
+  h.fake.bus().InjectMessage("TASK_REQUEST", Advance(1, {18, 0, 0}, {36, 0, 0}));
+  EXPECT_TRUE(h.WaitForPlans(1, 0.3).empty()) << "answered without a map";
+  h.fake.bus().InjectMessage("CONTOUR_MAP", MapMessage(1, {Poly(EntryOutline(), true)}));
+  h.fake.bus().InjectMessage("TASK_REQUEST", Advance(1, {18, 0, 0}, {36, 0, 0}));  // the repeat
+  const std::vector<task_plan_t> plans = h.WaitForPlans(1);
+  ASSERT_EQ(plans.size(), 1u);
+  EXPECT_EQ(plans[0].request_id, 1);
+  EXPECT_EQ(plans[0].status, task_plan_t::OK) << plans[0].reason;
+}
+
 TEST(TaskPlannerNode, EveryBadRequestIsAnsweredFailedInOneLineAndCountedBad) {
-  Harness h;
+  TaskPlannerNodeOptions no_wait;
+  no_wait.first_map_wait = 0.0;  // "no map" answered at once
+  Harness h(no_wait);
   h.fake.bus().InjectMessage("TASK_REQUEST", Advance(1, {18, 0, 0}, {36, 0, 0}));  // no map yet
   h.fake.bus().InjectMessage("CONTOUR_MAP", MapMessage(1, {Poly(EntryOutline(), true)}));
   task_request_t kind = Advance(2, {18, 0, 0}, {36, 0, 0});
@@ -239,6 +258,7 @@ TEST(TaskPlannerNode, EveryBadRequestIsAnsweredFailedInOneLineAndCountedBad) {
 
 TEST(TaskPlannerNode, AZlibMapALineMapAndTheDeadline) {
   TaskPlannerNodeOptions options;
+  options.first_map_wait = 0.0;  // "no map" answered at once
   options.line_map_channel = "LINE_MAP";
   Harness h(options);
   // A line map: ADVANCE plans on it (no contour map at all).
