@@ -1,5 +1,7 @@
 #include "common/file_io.h"
 
+#include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cmath>
@@ -37,8 +39,17 @@ void CheckOutputIsNotInput(const std::string& what, const std::string& output,
   }
 }
 
-void WriteFileAtomically(const std::string& path, const std::string& content) {
+void WriteFileAtomically(const std::string& path, const std::string& content, int mode) {
   const std::string tmp = path + ".tmp." + std::to_string(::getpid());
+  if (mode >= 0) {
+    // Created (empty) with the mode, and the mode forced past the umask, before the content.
+    const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC, static_cast<mode_t>(mode));
+    if (fd < 0 || ::fchmod(fd, static_cast<mode_t>(mode)) != 0) {
+      if (fd >= 0) ::close(fd);
+      throw InputError(path + ": cannot create with mode " + std::to_string(mode));
+    }
+    ::close(fd);
+  }
   {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
     if (!out) throw InputError(path + ": cannot open for writing");

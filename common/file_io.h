@@ -26,8 +26,9 @@ std::string ReadFile(const std::string& path);
 // `what` names the output option in the message, e.g. "--map-out". Empty paths are ignored.
 void CheckOutputIsNotInput(const std::string& what, const std::string& output,
                            const std::vector<std::string>& inputs);
-// Writes `content` to path.tmp.<pid> and renames it onto `path`.
-void WriteFileAtomically(const std::string& path, const std::string& content);
+// Writes `content` to path.tmp.<pid> and renames it onto `path`. With `mode` >= 0 (e.g. 0600
+// for a key file) the file has that mode from its creation, before any byte is written.
+void WriteFileAtomically(const std::string& path, const std::string& content, int mode = -1);
 
 // {"segments": [[x1, y1, x2, y2], ...]} in metres; other keys are allowed and ignored.
 std::vector<Segment> ParseSegmentsJson(const std::string& text, const std::string& source_name);
