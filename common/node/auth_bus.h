@@ -7,6 +7,11 @@
 // never handed on: it is counted in messages_bad and auth_rejected and logged in one line
 // naming the channel and the reason (rate-limited as every bad message, Bus::ReportBad). Other
 // channels pass untouched. NodeRuntime wraps its bus in one when --auth.key-file is given.
+//
+// Limitation: a process subscribes to a signed channel once. LCM hands one receipt to every
+// matching subscription, and the second delivery of the same message is refused as a replay
+// (no node of the fleet subscribes twice to a signed channel; telling a second delivery from a
+// replay would need a receipt id from the transport).
 
 #include <cstdint>
 #include <memory>
