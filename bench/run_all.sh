@@ -49,6 +49,7 @@ benches=(
   "planner_bench|"
   "planner_ompl_bench|"
   "task_planner_bench|"
+  "auth_bench|"
 )
 if [[ $carmen -eq 1 ]]; then
   benches+=("mapper_carmen_bench_intel|--only intel" "mapper_carmen_bench_fr079|--only fr079")

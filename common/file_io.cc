@@ -1,6 +1,7 @@
 #include "common/file_io.h"
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -43,9 +44,18 @@ void CheckOutputIsNotInput(const std::string& what, const std::string& output,
 namespace {
 
 // Writes all of `content` to a new file and, when durable, fsyncs it.
-void WriteNewFile(const std::string& path, const std::string& tmp, const std::string& content, bool durable) {
-  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+void WriteNewFile(const std::string& path, const std::string& tmp, const std::string& content,
+                  const AtomicWriteOptions& o) {
+  const int fd =
+      ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, static_cast<mode_t>(o.mode >= 0 ? o.mode : 0644));
   if (fd < 0) throw InputError(path + ": cannot open for writing: " + std::strerror(errno));
+  // The mode forced past the umask before the content (a key file is never readable by others).
+  if (o.mode >= 0 && ::fchmod(fd, static_cast<mode_t>(o.mode)) != 0) {
+    ::close(fd);
+    std::remove(tmp.c_str());
+    throw InputError(path + ": cannot create with mode " + std::to_string(o.mode));
+  }
+  const bool durable = o.durable;
   size_t written = 0;
   while (written < content.size()) {
     const ssize_t n = ::write(fd, content.data() + written, content.size() - written);
@@ -75,7 +85,7 @@ std::string PreviousFilePath(const std::string& path) { return path + ".prev"; }
 
 void WriteFileAtomically(const std::string& path, const std::string& content, const AtomicWriteOptions& options) {
   const std::string tmp = path + ".tmp." + std::to_string(::getpid());
-  WriteNewFile(path, tmp, content, options.durable);
+  WriteNewFile(path, tmp, content, options);
   if (options.keep_previous && std::filesystem::exists(path)) {
     // PATH stays whole throughout: a crash between these steps leaves PATH (and maybe no .prev).
     const std::string previous = PreviousFilePath(path);

@@ -32,8 +32,11 @@ struct AtomicWriteOptions {
   // content survives a power cut (a plain rename can leave an empty file after one on ext4).
   bool durable = false;
   // The file it replaces stays as PATH.prev (a hard link, made before the rename): if PATH is
-  // ever found torn or corrupt, the one before it is still there (ReadFileOrPrevious).
+  // ever found torn or corrupt, the one before it is still there.
   bool keep_previous = false;
+  // >= 0 (e.g. 0600 for a key file): the file has this mode from its creation, before any byte
+  // is written, whatever the umask; -1: 0644 less the umask.
+  int mode = -1;
 };
 // Writes `content` to path.tmp.<pid> and renames it onto `path`: a crash mid-write leaves
 // the previous file whole.

@@ -12,6 +12,7 @@
 
 #include "common/config.h"
 #include "common/file_io.h"
+#include "common/message_auth.h"
 #include "common/node/bus.h"
 #include "common/node/contour_map_conversions.h"
 #include "common/node/conversions.h"
@@ -94,7 +95,9 @@ int RunExportMcapCommand(const std::vector<std::string>& in_args) {
   while (const LogEvent* e = reader.NextInPlace()) {
     if (!matcher.Matches(e->channel)) continue;
     const uint64_t log_ns = static_cast<uint64_t>(std::max<int64_t>(0, e->timestamp)) * 1000u;
-    const MessageProbe probe = ProbeMessage(e->channel, e->data.data(), e->data.size());
+    // The message without a signed command's authentication trailer (common/message_auth.h).
+    const size_t size = static_cast<size_t>(StripAuthTrailer(e->data.data(), static_cast<int>(e->data.size())));
+    const MessageProbe probe = ProbeMessage(e->channel, e->data.data(), size);
     if (!probe.ok || !probe.known_type) {
       if (!probe.ok) {
         if (first_error.empty()) first_error = e->channel + " at byte " + std::to_string(e->offset) + ": " + probe.error;
@@ -114,13 +117,13 @@ int RunExportMcapCommand(const std::vector<std::string>& in_args) {
         json j;
         std::string error;
         const KnownMessageType* known = FindKnownTypeByName(type);
-        if (!known->to_json(e->data.data(), e->data.size(), &j, &error)) throw InputError(error);
+        if (!known->to_json(e->data.data(), size, &j, &error)) throw InputError(error);
         topics.Write(e->channel, type, std::string(known->json_schema), log_ns, publish_ns, j);
       }
       if (type == "minenav.pose_estimate_t" && e->channel == scan_pose_channel) estimate = Decode<pose_estimate_t>(*e).pose;
       if (type == "minenav.vehicle_truth_t") truth = Decode<vehicle_truth_t>(*e).pose;
       if (!foxglove) continue;
-      if (auto f = fs::ToFoxglove(e->channel, type, e->data.data(), e->data.size(), estimate ? estimate : truth))
+      if (auto f = fs::ToFoxglove(e->channel, type, e->data.data(), size, estimate ? estimate : truth))
         topics.Write("/foxglove/" + e->channel, f->first, fs::SchemaText(f->first), log_ns, publish_ns, f->second);
     } catch (const InputError& ex) {
       if (first_error.empty()) first_error = e->channel + " at byte " + std::to_string(e->offset) + ": " + ex.what();

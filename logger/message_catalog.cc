@@ -1,5 +1,7 @@
 #include "logger/message_catalog.h"
 
+#include "common/message_auth.h"
+
 #include <cstdint>
 #include <cstdio>
 
@@ -159,6 +161,8 @@ std::string ExpectedTypeForChannel(const std::string& channel) {
 }
 
 MessageProbe ProbeMessage(const std::string& channel, const uint8_t* data, size_t size) {
+  // A signed command carries an authentication trailer after the message (common/message_auth.h).
+  size = static_cast<size_t>(StripAuthTrailer(data, static_cast<int>(size)));
   const std::string expected = ExpectedTypeForChannel(channel);
   const KnownMessageType* actual = FindKnownTypeByFingerprint(data, size);
   MessageProbe probe;

@@ -49,7 +49,8 @@ std::string ExpectedTypeForChannel(const std::string& channel);
 // Decodes the payload as the channel's expected type (or, for channels without one, as
 // whatever minenav type its fingerprint names). ok = false with a one-line error for a
 // payload shorter than a fingerprint, a fingerprint of another type on a named channel,
-// a truncated or malformed payload, or bytes left over after the message. A foreign
+// a truncated or malformed payload, or bytes left over after the message (an authentication
+// trailer, common/message_auth.h, is not left over: it is stripped first). A foreign
 // fingerprint on an unnamed channel is ok with known_type = false.
 MessageProbe ProbeMessage(const std::string& channel, const uint8_t* data, size_t size);
 

@@ -14,7 +14,8 @@ MINENAV_JOBS="${MINENAV_JOBS:-$(nproc)}"
 # libclang-rt-14-dev: the fuzz targets (fuzz/README.md: libFuzzer, ASan and UBSan runtimes).
 MINENAV_PACKAGES=(build-essential cmake liblcm-dev liblcm-bin libeigen3-dev libgtest-dev
                   libgmock-dev zlib1g-dev libbz2-dev nlohmann-json3-dev iproute2 util-linux python3
-                  libsystemd-dev librsvg2-bin libboost-dev chromium tmux clang-14 libclang-rt-14-dev)
+                  libsystemd-dev librsvg2-bin libboost-dev chromium tmux clang-14 libclang-rt-14-dev
+                  libsodium-dev pkg-config)
 
 # minenav_install_missing PACKAGE...: apt-get installs those of the Debian packages not installed.
 minenav_install_missing() {

@@ -26,6 +26,7 @@
 #                         request, planning times, what was retried or refused
 #   mission.svg, mission.png  the final map over the true walls, planned and driven paths
 #   NAME.log              each process's log; fleet.log the supervisor's status tables
+#   fleet.key             the key the command channels were signed with (mode 600)
 #
 # --fast F (default 6) multiplies the miner's speeds (tramming 0.076 m/s, turning 0.05 rad/s,
 # the cutter's sumping and shearing) so the mission takes minutes; the report states it.
@@ -80,10 +81,10 @@ if [ -z "$bin" ]; then
   minenav_install_deps
   build="$MINENAV_ROOT/build/release"
   echo "== building in $build"
-  minenav_build "$build" -DMINENAV_WERROR=ON -- "${processes[@]}" log_tool fleet
+  minenav_build "$build" -DMINENAV_WERROR=ON -- "${processes[@]}" log_tool fleet auth_keygen
   bin="$build/bin"
 else
-  for p in "${processes[@]}" log_tool fleet; do
+  for p in "${processes[@]}" log_tool fleet auth_keygen; do
     [ -x "$bin/$p" ] || { echo "run_demo.sh: --bin $bin has no program $p" >&2; exit 2; }
   done
   bin="$(cd "$bin" && pwd)"
@@ -92,6 +93,11 @@ fi
 out="${out:-$MINENAV_ROOT/out/mission-$(date -u +%Y%m%d-%H%M%S)}"
 mkdir -p "$out"
 out="$(cd "$out" && pwd)"
+# The fleet's key (fleet/mission.fleet's KEY_FILE): its command channels are signed and nothing
+# unsigned is obeyed (common/node/README.md, "Security"). A fresh one per run, mode 600; on two
+# hosts both supervisors read this file.
+rm -f "$out/fleet.key"
+"$bin/auth_keygen" "$out/fleet.key" >/dev/null
 echo "== outputs in $out"
 
 # The section: pillars 12 m square, entries 7 m wide; the panel's boundary wall one entry

@@ -29,6 +29,10 @@ fi
   minenav_install_deps
   minenav_build "$build" -DMINENAV_WERROR=ON -- viewer_bridge
 }
+# The demo's fleet signs its command channels: the bridge verifies what it shows of them and
+# signs the operator's commands with the same key file, read from vehicle_sim's command line.
+key_file="$(tr '\0' '\n' < "/proc/$pid/cmdline" | awk 'prev == "--auth.key-file" { print; exit } { prev = $0 }')"
+[ -n "$key_file" ] && extra+=(--auth.key-file "$key_file")
 echo "== the operator's view of the demo (pid $pid): http://127.0.0.1:$port/"
 exec "$build/bin/viewer_bridge" --port "$port" --net-namespace "/proc/$pid/ns/net" \
   "${extra[@]}"

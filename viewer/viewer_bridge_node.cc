@@ -8,6 +8,7 @@
 
 #include "common/file_io.h"
 #include "common/log.h"
+#include "common/message_auth.h"
 #include "common/node/bus.h"
 #include "minenav/heartbeat_t.hpp"
 
@@ -74,6 +75,9 @@ ViewerBridgeNode::ViewerBridgeNode(NodeRuntime& runtime, ViewerBridgeOptions opt
 }
 
 void ViewerBridgeNode::Show(std::string_view channel, const uint8_t* data, size_t size, int64_t utime) {
+  // A signed command read from a log, or live without --auth.key-file, still carries its
+  // authentication trailer (common/message_auth.h): shown without it.
+  size = static_cast<size_t>(StripAuthTrailer(data, static_cast<int>(size)));
   for (DisplayMessage& d : stream_.OnMessageWithFoxglove(channel, data, size, utime)) server_.Publish(std::move(d));
 }
 

@@ -45,6 +45,12 @@ bool Bus::AcceptStamp(const RawMessage& raw, int64_t stamp, const char* type_nam
   return false;
 }
 
+void Bus::ReportUnauthenticated(std::string_view channel, const std::string& why) {
+  ++counters_.auth_rejected;
+  last_auth_rejection_ = why;
+  ReportBad(channel, why);
+}
+
 void Bus::CountPublished(bool ok, const std::string& channel) {
   if (ok) {
     ++counters_.published;

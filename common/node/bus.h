@@ -49,6 +49,7 @@ struct BusCounters {
   int64_t published = 0;       // messages published
   int64_t publish_errors = 0;  // publications the transport refused
   int64_t stamps_rejected = 0; // of messages_bad: rejected for their utime (see AcceptStamp)
+  int64_t auth_rejected = 0;   // of messages_bad: rejected by authentication (auth_bus.h)
 };
 
 class Bus {
@@ -76,6 +77,8 @@ class Bus {
   const BusCounters& counters() const { return counters_; }
   // Why the latest message was rejected for its timestamp ("" if none yet), for HEARTBEAT.
   const std::string& last_stamp_rejection() const { return last_stamp_rejection_; }
+  // Why the latest message was rejected by authentication ("" if none yet), for HEARTBEAT.
+  const std::string& last_auth_rejection() const { return last_auth_rejection_; }
 
   // The timestamp window (DESIGN.md "The bus"; common/node/README.md "Limits"). A message
   // whose utime is negative, or more than max_lead_us after the time it was received (the
@@ -93,11 +96,14 @@ class Bus {
 
  protected:
   void CountPublished(bool ok, const std::string& channel);
+  // Counts a message refused by authentication (bad and auth_rejected) and logs `why`.
+  void ReportUnauthenticated(std::string_view channel, const std::string& why);
 
  private:
   BusCounters counters_;
   std::map<std::string, int64_t, std::less<>> bad_by_channel_;
   std::string last_stamp_rejection_;
+  std::string last_auth_rejection_;
   int64_t max_stamp_lead_us_ = 0;
 };
 

@@ -76,6 +76,16 @@ void NodeRuntime::Register(ConfigSchema& schema) {
                    0.0, 86400.0);
   schema.AddChannel("heartbeat_channel", &options_.heartbeat_channel, "publishes", "heartbeat_t",
                     "liveness, message counts and state");
+  DeclareOptions(OptionScope(schema).Nested("auth"), options_.auth);
+}
+
+void NodeRuntime::WrapAuthentication() {
+  if (options_.auth.key_file.empty()) return;
+  if (!(options_.auth.max_age > 0) || !std::isfinite(options_.auth.max_age))
+    throw UsageError("--auth.max-age must be > 0 s");
+  const int64_t lead = bus_->max_stamp_lead_us();
+  bus_ = std::make_unique<AuthBus>(std::move(bus_), options_.auth, *clock_);
+  bus_->set_max_stamp_lead_us(lead);
 }
 
 void NodeRuntime::ApplyLogSettings() {
@@ -117,6 +127,7 @@ void NodeRuntime::Start() {
     bus_->set_max_stamp_lead_us(SecondsToUs(options_.max_stamp_lead));
     MINENAV_LOG(kDebug) << "LCM on " << url;
   }
+  WrapAuthentication();
   if (options_.heartbeat_period > 0) {
     AddTimer(options_.heartbeat_period, [this](int64_t) { PublishHeartbeat(state_); });
   }
@@ -128,6 +139,7 @@ void NodeRuntime::StartWith(std::unique_ptr<Bus> bus, Clock& clock) {
   ApplyLogSettings();
   bus_ = std::move(bus);
   clock_ = &clock;
+  WrapAuthentication();
   if (options_.heartbeat_period > 0) {
     AddTimer(options_.heartbeat_period, [this](int64_t) { PublishHeartbeat(state_); });
   }
@@ -205,17 +217,22 @@ void NodeRuntime::PublishHeartbeat(int8_t state) {
   hb.message = status_message_;
   hb.messages_in = bus_->counters().messages_in;
   hb.messages_bad = bus_->counters().messages_bad;
-  // Messages rejected for their timestamps since the last heartbeat turn an OK into a
-  // WARN that says so: a stream stamped outside the window is a clock or sender fault a
-  // supervisor must see (other bad messages show in messages_bad).
-  const int64_t new_stamp_rejections = bus_->counters().stamps_rejected - stamps_rejected_at_last_heartbeat_;
-  stamps_rejected_at_last_heartbeat_ = bus_->counters().stamps_rejected;
-  if (new_stamp_rejections > 0 && state != heartbeat_t::STOPPING) {
+  // Messages rejected for their timestamps, or refused by authentication, since the last
+  // heartbeat turn an OK into a WARN that says how many and why: a stream stamped outside the
+  // window is a clock or sender fault, commands without the key someone on the network, and a
+  // supervisor must see both (other bad messages show in messages_bad).
+  auto warn_about = [&](int64_t total, int64_t* total_at_last, const char* what, const std::string& last) {
+    const int64_t fresh = total - *total_at_last;
+    *total_at_last = total;
+    if (fresh <= 0 || state == heartbeat_t::STOPPING) return;
     if (hb.state == heartbeat_t::OK) hb.state = heartbeat_t::WARN;
-    hb.message += std::string(hb.message.empty() ? "" : "; ") + std::to_string(new_stamp_rejections) +
-                  " message(s) rejected for their timestamps since the last heartbeat (last: " +
-                  bus_->last_stamp_rejection() + ")";
-  }
+    hb.message += std::string(hb.message.empty() ? "" : "; ") + std::to_string(fresh) + " message(s) " + what +
+                  " since the last heartbeat (last: " + last + ")";
+  };
+  warn_about(bus_->counters().stamps_rejected, &stamps_rejected_at_last_heartbeat_, "rejected for their timestamps",
+             bus_->last_stamp_rejection());
+  warn_about(bus_->counters().auth_rejected, &auth_rejected_at_last_heartbeat_, "refused by authentication",
+             bus_->last_auth_rejection());
   Publish(*bus_, options_.heartbeat_channel, hb);
   // systemctl status shows what the heartbeat says (sent when it changes).
   static const char* const kStateNames[] = {"STARTING", "OK", "WARN", "ERROR", "STOPPING"};

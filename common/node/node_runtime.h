@@ -29,6 +29,7 @@
 
 #include "common/clock.h"
 #include "common/config.h"
+#include "common/node/auth_bus.h"
 #include "common/node/bus.h"
 
 namespace minenav {
@@ -49,6 +50,8 @@ struct NodeOptions {
   // s: messages stamped more than this after they were received (or before 0) are
   // rejected as bad (Bus::AcceptStamp); covers clock skew between hosts. 0 = no check.
   double max_stamp_lead = 10.0;
+  // Signed command channels (auth_bus.h): --auth.key-file, --auth.signed-channels, --auth.max-age.
+  AuthOptions auth;
 };
 
 // Shortest HEARTBEAT period accepted (s): a heartbeat carries counters, not data.
@@ -135,6 +138,8 @@ class NodeRuntime {
   };
   void Register(ConfigSchema& schema);
   void ApplyLogSettings();
+  // Wraps bus_ in an AuthBus when --auth.key-file is given (the one place authentication is wired).
+  void WrapAuthentication();
   void BeginClock(int64_t utime);
   // systemd's notify protocol (live only; nothing without $NOTIFY_SOCKET).
   void StartServiceWatchdog();
@@ -162,6 +167,7 @@ class NodeRuntime {
   std::string status_message_;
   int64_t heartbeat_seq_ = 0;
   int64_t stamps_rejected_at_last_heartbeat_ = 0;
+  int64_t auth_rejected_at_last_heartbeat_ = 0;
   int64_t watchdog_usec_ = 0;
   std::string last_service_status_;
 };

@@ -122,3 +122,24 @@ if(NOT MINENAV_SANITIZE)
   # the 2 cores delays the mapper's estimates by seconds.
   set_tests_properties(bus.mission_two_hosts_with_a_fault PROPERTIES TIMEOUT 1200 LABELS "bus;mission" RUN_SERIAL TRUE)
 endif()
+
+# Issue 16, "Security": signed command channels. command_attacker publishes replayed, forged,
+# tampered and unsigned DRIVE_COMMANDs (also run beside the mission by bus/mission_test.sh);
+# vehicle_sim with a key file must not move on any of them (port 7930).
+add_executable(command_attacker bus/command_attacker.cc)
+target_include_directories(command_attacker PRIVATE "${CMAKE_SOURCE_DIR}")
+target_link_libraries(command_attacker PRIVATE minenav_node)
+minenav_warnings(command_attacker)
+set_target_properties(command_attacker PROPERTIES RUNTIME_OUTPUT_DIRECTORY "${CMAKE_BINARY_DIR}/bin")
+add_executable(command_auth_bus_test bus/command_auth_bus_test.cc)
+target_include_directories(command_auth_bus_test PRIVATE "${CMAKE_SOURCE_DIR}")
+target_link_libraries(command_auth_bus_test PRIVATE minenav_test_support minenav_node GTest::gtest_main)
+target_compile_definitions(command_auth_bus_test PRIVATE ${MINENAV_PROCESS_DEFS}
+  MINENAV_COMMAND_ATTACKER_BIN="$<TARGET_FILE:command_attacker>")
+minenav_warnings(command_auth_bus_test)
+set_target_properties(command_auth_bus_test PROPERTIES RUNTIME_OUTPUT_DIRECTORY "${CMAKE_BINARY_DIR}/tests")
+add_dependencies(command_auth_bus_test vehicle_sim command_attacker)
+add_test(NAME bus.command_auth
+  COMMAND "${MINENAV_PRIVATE_NET}" --port 7930 -- $<TARGET_FILE:command_auth_bus_test>
+          --gtest_filter=CommandAuthBusTest.*)
+set_tests_properties(bus.command_auth PROPERTIES TIMEOUT 120 LABELS bus)
