@@ -464,6 +464,46 @@ Se2PlanResult Se2Planner::Search(const Pose2& start_in, const Pose2& goal_in, co
     return result;
   };
 
+  const MotionCosts& costs = options_.costs;
+  const double r = options_.turn_radius;
+  // The analytic shot from `pose`: the cheapest obstacle-free shots that are short enough,
+  // cheapest first; the first free one, or null.
+  std::vector<AnalyticShot> shots;
+  const auto free_shot = [&](const Pose2& pose, int direction) -> const AnalyticShot* {
+    shots = AnalyticShots(pose, goal, r, costs, direction);
+    for (const AnalyticShot& shot : shots) {
+      if (shot.cost > options_.analytic_shot_max_cost_ratio * shots.front().cost) break;  // cheapest first
+      double length = 0.0;
+      for (const MotionPiece& p : shot.pieces) length += p.motion == Motion::kTurnInPlace ? 0.0 : p.amount;
+      if (length > options_.analytic_shot_max_length) continue;
+      ++result.shots_tried;
+      bool free = true;
+      Pose2 from = pose;
+      for (const MotionPiece& p : shot.pieces) {
+        if (PieceCollides(from, p)) {
+          free = false;
+          break;
+        }
+        from = p.end;
+      }
+      if (free) return &shot;
+    }
+    return nullptr;
+  };
+  // The simple case first (thesis 6.2.2: "gradient descent for the simple ones"): the shot
+  // from the start, before the 2-D heuristic is settled (a 100 m entry's Dijkstra costs far
+  // more than the shot's sweep). It is the shot the search's first expansion would try, so
+  // the answer is the search's, only sooner.
+  const SearchStatus first = CheckLimits(limits, 0, 1);
+  if (first != SearchStatus::kFound) return finish(first, LimitReason(first, 0, 1));
+  if (const AnalyticShot* shot = free_shot(start, 0)) {
+    result.path.start = start;
+    result.path.pieces = MergePieces(shot->pieces);
+    result.cost = shot->cost;
+    result.expansions = result.states = 1;
+    return finish(SearchStatus::kFound, "");
+  }
+
   // 2-D part of the heuristic: distances from the goal over the cells the centre may be in,
   // settled on demand and kept for the next request to the same goal cell.
   const GridFrame& frame = field_->frame();
@@ -483,8 +523,6 @@ Se2PlanResult Se2Planner::Search(const Pose2& start_in, const Pose2& goal_in, co
     return finish(SearchStatus::kNoPath,
                   "the goal is not reachable: no corridor wide enough for the footprint's inscribed circle joins "
                   "start and goal");
-  const MotionCosts& costs = options_.costs;
-  const double r = options_.turn_radius;
   const auto heuristic = [&](const Pose2& p, int direction) {
     const double d2 = distance_2d(p.x, p.y, p.theta);
     if (d2 == kInf) return kInf;
@@ -550,28 +588,12 @@ Se2PlanResult Se2Planner::Search(const Pose2& start_in, const Pose2& goal_in, co
     const double g = current.g, spare = current.spare;
     const int direction = current.direction, heading = current.heading;
 
-    // The analytic shot: the cheapest obstacle-free shots that are short enough, first free one wins.
-    if (result.expansions % options_.analytic_shot_interval == 1 || options_.analytic_shot_interval == 1 ||
-        key(pose.x, pose.y, heading) == goal_key) {
-      const std::vector<AnalyticShot> shots = AnalyticShots(pose, goal, r, costs, direction);
-      for (const AnalyticShot& shot : shots) {
-        if (shot.cost > options_.analytic_shot_max_cost_ratio * shots.front().cost) break;  // cheapest first
-        double length = 0.0;
-        for (const MotionPiece& p : shot.pieces) length += p.motion == Motion::kTurnInPlace ? 0.0 : p.amount;
-        if (length > options_.analytic_shot_max_length) continue;
-        ++result.shots_tried;
-        bool free = true;
-        Pose2 from = pose;
-        for (const MotionPiece& p : shot.pieces) {
-          if (PieceCollides(from, p)) {
-            free = false;
-            break;
-          }
-          from = p.end;
-        }
-        if (!free) continue;
-        result.path = path_to(e.node, shot.pieces);
-        result.cost = g + shot.cost;
+    // The analytic shot (the start's was tried before the search).
+    if (e.node != 0 && (result.expansions % options_.analytic_shot_interval == 1 ||
+                        options_.analytic_shot_interval == 1 || key(pose.x, pose.y, heading) == goal_key)) {
+      if (const AnalyticShot* shot = free_shot(pose, direction)) {
+        result.path = path_to(e.node, shot->pieces);
+        result.cost = g + shot->cost;
         result.states = static_cast<int64_t>(nodes.size());
         return finish(SearchStatus::kFound, "");
       }
