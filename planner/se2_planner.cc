@@ -394,7 +394,12 @@ void AddCounts(Se2PlanResult& into, const Se2PlanResult& other) {
 }  // namespace
 
 Se2PlanResult Se2Planner::Plan(const Pose2& start, const Pose2& goal, const SearchLimits& limits) const {
-  if (!setup_error_.empty() || !options_.corridor_waypoints) return Search(start, goal, limits);
+  if (!setup_error_.empty() || !options_.corridor_waypoints || !(options_.heuristic_turn_cost > 0.0))
+    return Search(start, goal, limits);
+  // The shot from the start first: where it is free (a box cut, a whole entry) neither the
+  // (cell, heading) costs behind the waypoints nor a leg is needed.
+  const Se2PlanResult direct = Search(start, goal, limits, /*shot_only=*/true);
+  if (direct.status != SearchStatus::kNoPath) return direct;
   const std::vector<Pose2> waypoints = CorridorWaypoints(start, goal);
   if (waypoints.empty()) return Search(start, goal, limits);
   // Leg by leg; the first leg that fails gives way to the whole search.
@@ -431,7 +436,8 @@ Se2PlanResult Se2Planner::Plan(const Pose2& start, const Pose2& goal, const Sear
   return total;
 }
 
-Se2PlanResult Se2Planner::Search(const Pose2& start_in, const Pose2& goal_in, const SearchLimits& limits) const {
+Se2PlanResult Se2Planner::Search(const Pose2& start_in, const Pose2& goal_in, const SearchLimits& limits,
+                                 bool shot_only) const {
   Se2PlanResult result;
   const auto invalid = [&](const std::string& reason) {
     result.status = SearchStatus::kInvalidRequest;
@@ -503,6 +509,7 @@ Se2PlanResult Se2Planner::Search(const Pose2& start_in, const Pose2& goal_in, co
     result.expansions = result.states = 1;
     return finish(SearchStatus::kFound, "");
   }
+  if (shot_only) return finish(SearchStatus::kNoPath, "no analytic shot from the start is free");
 
   // 2-D part of the heuristic: distances from the goal over the cells the centre may be in,
   // settled on demand and kept for the next request to the same goal cell.

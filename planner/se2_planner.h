@@ -144,8 +144,10 @@ class Se2Planner {
   static constexpr double kMaxFieldCells = 33554432.0;
 
   std::string CheckPose(const Pose2& pose, const std::string& what) const;
-  // The whole search from start to goal (Plan without the corridor waypoints).
-  Se2PlanResult Search(const Pose2& start, const Pose2& goal, const SearchLimits& limits) const;
+  // The whole search from start to goal (Plan without the corridor waypoints). `shot_only`:
+  // the request's checks and the analytic shot from the start only (kNoPath when none is free).
+  Se2PlanResult Search(const Pose2& start, const Pose2& goal, const SearchLimits& limits,
+                       bool shot_only = false) const;
   // The corridor waypoints between start and goal (empty when the axis path has no turn, or
   // no waypoint is free).
   std::vector<Pose2> CorridorWaypoints(const Pose2& start, const Pose2& goal) const;

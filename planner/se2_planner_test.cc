@@ -497,6 +497,14 @@ TEST(Se2PlannerTest, AFreeShotFromTheStartIsTheAnswerWithoutASearch) {
   EXPECT_NEAR(r.cost, 148.0, 1e-6);
   const auto report = testing::CheckPath(map, s, AsChecked(r.path), CheckerFor(planner));
   EXPECT_TRUE(report.ok) << report.problem;
+  // Also with the heading-aware term and its corridor waypoints: the shot comes first.
+  Se2PlannerOptions guided;
+  guided.heuristic_turn_cost = 6.0;
+  const Se2Planner guided_planner(map, Footprint::Rectangle(3.3, 10.0), guided);
+  const Se2PlanResult rg = guided_planner.Plan(s, g);
+  ASSERT_EQ(rg.status, SearchStatus::kFound) << rg.reason;
+  EXPECT_EQ(rg.expansions, 1);
+  EXPECT_NEAR(rg.path.Length(), 148.0, 1e-6);
   // The stop request is still heard before that shot.
   SearchLimits stopped;
   stopped.stop_requested = [] { return true; };
