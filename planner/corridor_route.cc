@@ -1,10 +1,30 @@
 #include "planner/corridor_route.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
 
 namespace minenav {
+
+RouteGrid CoarseRouteGrid(const GridFrame& fine, const OccupancyGrid& fine_cells, const std::vector<uint8_t>& fine_roomy,
+                          double resolution) {
+  RouteGrid g;
+  g.frame = fine;
+  g.frame.cell = resolution;
+  g.frame.nx = std::max(1, static_cast<int>(std::ceil(fine.nx * fine.cell / resolution)));
+  g.frame.ny = std::max(1, static_cast<int>(std::ceil(fine.ny * fine.cell / resolution)));
+  g.cells = OccupancyGrid(g.frame.nx, g.frame.ny);
+  g.roomy.assign(g.cells.blocked.size(), 0);
+  for (int iy = 0; iy < g.frame.ny; ++iy)
+    for (int ix = 0; ix < g.frame.nx; ++ix) {
+      const int fx = fine.CellX(fine.x0 + (ix + 0.5) * resolution), fy = fine.CellY(fine.y0 + (iy + 0.5) * resolution);
+      const bool free = fine_cells.Free(fx, fy);
+      g.cells.SetBlocked(ix, iy, !free);
+      g.roomy[g.cells.Index(ix, iy)] = free && fine_roomy[fine_cells.Index(fx, fy)] ? 1 : 0;
+    }
+  return g;
+}
 
 std::vector<RouteStep> DescendRoute(LazyHeadingGridDistances& d, const OccupancyGrid& cells, GridCell start,
                                     int start_heading) {

@@ -12,10 +12,22 @@
 #include <cstddef>
 #include <vector>
 
+#include "common/segment_index.h"
 #include "planner/grid_astar.h"
 #include "planner/grid_dijkstra.h"
 
 namespace minenav {
+
+// The grid the route is planned on: coarser than the clearance field's (a route across a
+// section at the field's 0.2 m settles ~2 million (cell, heading) states; at 1 m 25 times
+// fewer). A coarse cell is free (roomy) when the fine cell at its centre is.
+struct RouteGrid {
+  GridFrame frame;
+  OccupancyGrid cells;
+  std::vector<uint8_t> roomy;
+};
+RouteGrid CoarseRouteGrid(const GridFrame& fine, const OccupancyGrid& fine_cells, const std::vector<uint8_t>& fine_roomy,
+                          double resolution);
 
 // One cell of the route and the heading (0..7, k * 45 degrees) the route moves along there.
 struct RouteStep {

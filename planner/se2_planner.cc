@@ -127,6 +127,8 @@ std::string ValidateOptions(const Se2PlannerOptions& o) {
   if (o.cached_goals < 1 || o.cached_goals > 64) return "cached_goals must be in [1, 64]";
   if (o.corridor_leg_expansions < 1) return "corridor_leg_expansions must be >= 1";
   if (o.corridor_turn_expansions < 1) return "corridor_turn_expansions must be >= 1";
+  if (!(o.corridor_route_resolution > 0.0) || !std::isfinite(o.corridor_route_resolution))
+    return "corridor_route_resolution must be finite and > 0";
   if (!(o.corridor_route_turn_cost >= 0.0) || !std::isfinite(o.corridor_route_turn_cost))
     return "corridor_route_turn_cost must be finite and >= 0";
   if (!(o.corridor_route_lead > 0.0) || !std::isfinite(o.corridor_route_lead))
@@ -167,6 +169,8 @@ void DeclareOptions(OptionScope scope, Se2PlannerOptions& o) {
                   "the corridor route's cost per 45 degrees of turning", 0.0, 1000.0);
   scope.AddDouble("corridor_route_lead", &o.corridor_route_lead, "m",
                   "route before and after a turn to its local search's start and goal", 0.01, 1000.0);
+  scope.AddDouble("corridor_route_resolution", &o.corridor_route_resolution, "m", "cells of the corridor route's grid",
+                  0.01, 100.0);
   scope.AddInt("corridor_turn_expansions", &o.corridor_turn_expansions, "expansions a leg of the corridor route may take",
                1, 100000000);
   DeclareOptions(scope.Nested("costs"), o.costs);
@@ -226,6 +230,9 @@ Se2Planner::Se2Planner(std::vector<Segment> map, Footprint footprint, Se2Planner
   for (int iy = 0; iy < frame.ny; ++iy)
     for (int ix = 0; ix < frame.nx; ++ix)
       roomy_cells_[centre_cells_.Index(ix, iy)] = field_->AtCell(ix, iy) + slack >= roomy ? 1 : 0;
+  if (options_.corridor_route)
+    route_grid_ = CoarseRouteGrid(frame, centre_cells_, roomy_cells_,
+                                  std::max(options_.corridor_route_resolution, frame.cell));
 }
 
 bool Se2Planner::PoseFree(const Pose2& pose) const { return checker_ && !checker_->Collides(pose); }
@@ -350,19 +357,42 @@ Pose2 Se2Planner::CentredPose(GridCell c, int heading) const {
   return Pose2(centre.x(), centre.y(), NormalizeAngle(heading * kPi / 4.0));
 }
 
-std::vector<RouteStep> Se2Planner::Route(const Pose2& start, const Pose2& goal, double turn_cost) const {
+std::vector<RouteStep> Se2Planner::Route(const Pose2& start, const Pose2& goal, double turn_cost, bool coarse) const {
   if (!Finite(start) || !Finite(goal)) return {};
-  const GridFrame& frame = field_->frame();
-  LazyHeadingGridDistances& d = HeadingDistancesTo({frame.CellX(goal.x), frame.CellY(goal.y)},
-                                                   LazyHeadingGridDistances::HeadingOf(goal.theta), turn_cost);
-  return DescendRoute(d, centre_cells_, {frame.CellX(start.x), frame.CellY(start.y)},
-                      LazyHeadingGridDistances::HeadingOf(start.theta));
+  const GridFrame& fine = field_->frame();
+  if (!coarse) {
+    LazyHeadingGridDistances& d = HeadingDistancesTo({fine.CellX(goal.x), fine.CellY(goal.y)},
+                                                     LazyHeadingGridDistances::HeadingOf(goal.theta), turn_cost);
+    return DescendRoute(d, centre_cells_, {fine.CellX(start.x), fine.CellY(start.y)},
+                        LazyHeadingGridDistances::HeadingOf(start.theta));
+  }
+  const GridFrame& frame = route_grid_.frame;
+  const GridCell goal_cell{frame.CellX(goal.x), frame.CellY(goal.y)};
+  const int goal_heading = LazyHeadingGridDistances::HeadingOf(goal.theta);
+  const double cell_turn_cost = turn_cost / frame.cell;
+  LazyHeadingGridDistances* d = nullptr;
+  for (auto it = route_distances_.begin(); it != route_distances_.end() && !d; ++it)
+    if ((*it)->source() == goal_cell && (*it)->source_heading() == goal_heading && (*it)->turn_cost() == cell_turn_cost)
+      d = it->get();
+  if (!d) {
+    route_distances_.push_front(std::make_unique<LazyHeadingGridDistances>(
+        route_grid_.cells, goal_cell, goal_heading, cell_turn_cost, std::max(1.0, options_.costs.reverse_factor),
+        &route_grid_.roomy, 4.0));
+    while (route_distances_.size() > static_cast<size_t>(options_.cached_goals)) route_distances_.pop_back();
+    d = route_distances_.front().get();
+  }
+  std::vector<RouteStep> route = DescendRoute(*d, route_grid_.cells, {frame.CellX(start.x), frame.CellY(start.y)},
+                                              LazyHeadingGridDistances::HeadingOf(start.theta));
+  for (RouteStep& step : route)  // to the field's cells
+    step.cell = {fine.CellX(frame.x0 + (step.cell.x + 0.5) * frame.cell),
+                 fine.CellY(frame.y0 + (step.cell.y + 0.5) * frame.cell)};
+  return route;
 }
 
 std::vector<Pose2> Se2Planner::CorridorWaypoints(const Pose2& start, const Pose2& goal) const {
   std::vector<Pose2> waypoints;
   if (!(options_.heuristic_turn_cost > 0.0)) return waypoints;
-  const std::vector<RouteStep> route = Route(start, goal, options_.heuristic_turn_cost);
+  const std::vector<RouteStep> route = Route(start, goal, options_.heuristic_turn_cost, /*coarse=*/false);
   // The runs of steps with one heading, as [first, end) indices.
   std::vector<std::pair<size_t, size_t>> runs;
   for (size_t i = 0; i < route.size(); ++i)
@@ -386,8 +416,10 @@ std::vector<Pose2> Se2Planner::CorridorWaypoints(const Pose2& start, const Pose2
 
 std::vector<Pose2> Se2Planner::RouteWaypoints(const Pose2& start, const Pose2& goal) const {
   std::vector<Pose2> waypoints;
-  const std::vector<RouteStep> route = Route(start, goal, options_.corridor_route_turn_cost);
-  const size_t lead = static_cast<size_t>(std::lround(options_.corridor_route_lead / field_->frame().cell));
+  const std::vector<RouteStep> route = Route(start, goal, options_.corridor_route_turn_cost, /*coarse=*/true);
+  // Route steps are route_grid_ cells; the walk into a side arm is in the field's cells.
+  const size_t lead = static_cast<size_t>(std::lround(options_.corridor_route_lead / route_grid_.frame.cell));
+  const size_t arm_cells = static_cast<size_t>(std::lround(options_.corridor_route_lead / field_->frame().cell));
   const auto add = [&](GridCell cell, int heading) {
     const Pose2 w = CentredPose(cell, heading);
     if (!checker_->Collides(w)) waypoints.push_back(w);
@@ -416,7 +448,7 @@ std::vector<Pose2> Se2Planner::RouteWaypoints(const Pose2& start, const Pose2& g
         if (arm == (travel_in + 4) % 8 || arm % 2 == 1) continue;
         GridCell c = CentredCell(at, arm);  // from the middle of the crossing across the arm
         bool free = true;
-        for (size_t j = 0; j < lead && free; ++j) {
+        for (size_t j = 0; j < arm_cells && free; ++j) {
           c = {c.x + H::kDx[arm], c.y + H::kDy[arm]};
           free = centre_cells_.Free(c.x, c.y);
         }

@@ -84,6 +84,7 @@ struct Se2PlannerOptions {
   bool corridor_route = false;
   double corridor_route_turn_cost = 6.0;  // m per 45 degrees of the route's turns. Default 6.
   double corridor_route_lead = 12.0;      // m of route before and after a turn's waypoints. Default 12.
+  double corridor_route_resolution = 1.0;  // m, cells of the route's grid. Default 1.
   int corridor_turn_expansions = 20000;   // expansions a leg of the route may take. Default 20,000.
   MotionCosts costs;
 };
@@ -168,7 +169,8 @@ class Se2Planner {
   // The corridor route's waypoints (corridor_route): before and after each turn.
   std::vector<Pose2> RouteWaypoints(const Pose2& start, const Pose2& goal) const;
   // The (cell, heading) route from start to goal with turns at turn_cost m per 45 degrees.
-  std::vector<RouteStep> Route(const Pose2& start, const Pose2& goal, double turn_cost) const;
+  // On the field's cells, or on route_grid_'s (`coarse`); the steps' cells are the field's.
+  std::vector<RouteStep> Route(const Pose2& start, const Pose2& goal, double turn_cost, bool coarse) const;
   // The pose at the centre of `cell` moved across its heading (x or y) to the cell of most
   // clearance within 5 m, with that heading.
   Pose2 CentredPose(GridCell cell, int heading) const;
@@ -198,6 +200,8 @@ class Se2Planner {
   std::unique_ptr<FootprintCollisionChecker> checker_;
   OccupancyGrid centre_cells_;  // the field's cells where the vehicle's centre may be
   std::vector<uint8_t> roomy_cells_;  // centre cells with room to turn (heuristic_turn_cost)
+  RouteGrid route_grid_;              // the corridor route's coarse cells (corridor_route)
+  mutable std::deque<std::unique_ptr<LazyHeadingGridDistances>> route_distances_;  // most recent first
   double largest_clearance_ = 0.0;
   mutable double primitives_phase_ = std::numeric_limits<double>::quiet_NaN();
   mutable std::vector<SweptPrimitive> primitives_;  // [heading * 8 + primitive]
