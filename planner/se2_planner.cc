@@ -127,6 +127,7 @@ std::string ValidateOptions(const Se2PlannerOptions& o) {
   if (o.cached_goals < 1 || o.cached_goals > 64) return "cached_goals must be in [1, 64]";
   if (o.corridor_leg_expansions < 1) return "corridor_leg_expansions must be >= 1";
   if (o.corridor_turn_expansions < 1) return "corridor_turn_expansions must be >= 1";
+  if (!(o.corridor_route_min_distance >= 0.0)) return "corridor_route_min_distance must be >= 0";
   if (!(o.corridor_route_resolution > 0.0) || !std::isfinite(o.corridor_route_resolution))
     return "corridor_route_resolution must be finite and > 0";
   if (!(o.corridor_route_turn_cost >= 0.0) || !std::isfinite(o.corridor_route_turn_cost))
@@ -169,6 +170,8 @@ void DeclareOptions(OptionScope scope, Se2PlannerOptions& o) {
                   "the corridor route's cost per 45 degrees of turning", 0.0, 1000.0);
   scope.AddDouble("corridor_route_lead", &o.corridor_route_lead, "m",
                   "route before and after a turn to its local search's start and goal", 0.01, 1000.0);
+  scope.AddDouble("corridor_route_min_distance", &o.corridor_route_min_distance, "m",
+                  "requests with the goal nearer the start than this are not routed", 0.0, 1e6);
   scope.AddDouble("corridor_route_resolution", &o.corridor_route_resolution, "m", "cells of the corridor route's grid",
                   0.01, 100.0);
   scope.AddInt("corridor_turn_expansions", &o.corridor_turn_expansions, "expansions a leg of the corridor route may take",
@@ -480,13 +483,15 @@ void AddCounts(Se2PlanResult& into, const Se2PlanResult& other) {
 
 Se2PlanResult Se2Planner::Plan(const Pose2& start, const Pose2& goal, const SearchLimits& limits) const {
   const bool waypoints_on = options_.corridor_waypoints && options_.heuristic_turn_cost > 0.0;
-  if (!setup_error_.empty() || (!waypoints_on && !options_.corridor_route)) return Search(start, goal, limits);
+  const bool route_on = options_.corridor_route && Finite(start) && Finite(goal) &&
+                        std::hypot(goal.x - start.x, goal.y - start.y) >= options_.corridor_route_min_distance;
+  if (!setup_error_.empty() || (!waypoints_on && !route_on)) return Search(start, goal, limits);
   // The shot from the start first: where it is free (a box cut, a whole entry) neither the
   // (cell, heading) costs behind the waypoints nor a leg is needed.
   const Se2PlanResult direct = Search(start, goal, limits, /*shot_only=*/true);
   if (direct.status != SearchStatus::kNoPath) return direct;
   Se2PlanResult spent;  // the work of the attempts that gave way
-  if (options_.corridor_route) {
+  if (route_on) {
     Se2PlanResult routed = PlanThrough(start, RouteWaypoints(start, goal), goal, limits,
                                        options_.corridor_turn_expansions);
     if (routed.status == SearchStatus::kFound || routed.status == SearchStatus::kStopped) return routed;

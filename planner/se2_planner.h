@@ -84,6 +84,10 @@ struct Se2PlannerOptions {
   bool corridor_route = false;
   double corridor_route_turn_cost = 6.0;  // m per 45 degrees of the route's turns. Default 6.
   double corridor_route_lead = 12.0;      // m of route before and after a turn's waypoints. Default 12.
+  // m: requests whose goal is nearer the start than this are not routed (a maneuver at a
+  // face: the full search is fast there, and the route's cusps in side arms would lengthen
+  // its path many times). Default 50.
+  double corridor_route_min_distance = 50.0;
   double corridor_route_resolution = 1.0;  // m, cells of the route's grid. Default 1.
   int corridor_turn_expansions = 20000;   // expansions a leg of the route may take. Default 20,000.
   MotionCosts costs;
