@@ -80,8 +80,8 @@ struct Se2PlannerOptions {
   // (cell, 45-degree heading) with turns charged corridor_route_turn_cost, a waypoint
   // corridor_route_lead before and after each of its turns (centred across the entry, heading
   // along it); the straight legs between are analytic shots, each turn a local search of at
-  // most corridor_turn_expansions. When a leg fails, Plan goes on as without it. Default false.
-  bool corridor_route = false;
+  // most corridor_turn_expansions. When a leg fails, Plan goes on as without it. Default true.
+  bool corridor_route = true;
   double corridor_route_turn_cost = 6.0;  // m per 45 degrees of the route's turns. Default 6.
   double corridor_route_lead = 12.0;      // m of route before and after a turn's waypoints. Default 12.
   // m: requests whose goal is nearer the start than this are not routed (a maneuver at a
@@ -89,7 +89,7 @@ struct Se2PlannerOptions {
   // its path many times). Default 50.
   double corridor_route_min_distance = 50.0;
   double corridor_route_resolution = 1.0;  // m, cells of the route's grid. Default 1.
-  int corridor_turn_expansions = 20000;   // expansions a leg of the route may take. Default 20,000.
+  int corridor_turn_expansions = 5000;    // expansions a leg of the route may take. Default 5,000.
   MotionCosts costs;
 };
 
