@@ -72,9 +72,11 @@ TEST(CorridorRouteTest, DescentFollowsTheCostsToTheGoal) {
 }
 
 TEST(CorridorRouteTest, CornerToCornerOfAGeneratedMineWithinAnExpansionBudget) {
-  // The bench's corner-to-corner requests on one generated mine (6.5 m entries, 0.05 m
-  // clearance), some starting or ending against the section's end wall (a cusp in a side arm
-  // of a crossing). Along the corridor route each turn is a local search of ~100 expansions
+  // The bench's first two corner-to-corner requests on one generated mine (6.5 m entries,
+  // 0.05 m clearance): one from the west corner facing east, one back from the east corner
+  // starting against the section's end wall (facing it: a cusp in a side arm of a crossing).
+  // (Two, not four: the independent checker's brute force over every wall segment along a
+  // 190 m path is most of the test's time, ≈ 1 s a path, ≈ 25 s under the sanitizers.) Along the corridor route each turn is a local search of ~100 expansions
   // and each straight leg a shot: all found within 20,000 expansions in all (the whole
   // search took > 200,000 and 2 s for 6 of 8 such requests: planner/README.md), each path
   // accepted by the independent checker.
@@ -82,7 +84,7 @@ TEST(CorridorRouteTest, CornerToCornerOfAGeneratedMineWithinAnExpansionBudget) {
   o.clearance = 0.05;
   o.corridor_route = true;
   const Footprint footprint = Footprint::Rectangle(3.3, 10.0);
-  const bench::PlannerScenarios sc = bench::BuildPlannerScenarios(1, 4, 0.1, footprint, o, 6.5);
+  const bench::PlannerScenarios sc = bench::BuildPlannerScenarios(1, 2, 0.1, footprint, o, 6.5);
   testing::PathCheckSettings settings = planner_test::CheckSettings(footprint.vertices, o.clearance);
   settings.turn_radius = o.turn_radius;
   int requests = 0;
@@ -102,7 +104,7 @@ TEST(CorridorRouteTest, CornerToCornerOfAGeneratedMineWithinAnExpansionBudget) {
     const auto report = testing::CheckPath(sc.maps[sc.MapIndex(q)], q.start, planner_test::AsChecked(r.path), settings);
     EXPECT_TRUE(report.ok) << report.problem;
   }
-  EXPECT_EQ(requests, 4);
+  EXPECT_EQ(requests, 2);
 }
 
 }  // namespace
