@@ -428,18 +428,18 @@ std::vector<Pose2> Se2Planner::RouteWaypoints(const Pose2& start, const Pose2& g
     if (!checker_->Collides(w)) waypoints.push_back(w);
   };
   using H = LazyHeadingGridDistances;
+  // The sense of the route's move into step i: forward when along its heading.
+  const auto forward_at = [&](size_t i) {
+    const GridCell a = route[i > 0 ? i - 1 : 0].cell, b = route[i].cell;
+    const int k = route[i].heading;
+    return (b.x - a.x) * H::kDx[k] + (b.y - a.y) * H::kDy[k] >= 0;
+  };
   for (const RouteTurn& turn : RouteTurns(route, lead)) {
     if (turn.before > 0) add(route[turn.before].cell, route[turn.before].heading);
     // Where the route changes between forward and reverse it turns in place at the crossing,
     // which the vehicle does not fit to do: the real maneuver has a cusp in an arm of the
     // crossing, so a waypoint `lead` into the first free arm, as the vehicle enters it
     // (forward: facing into it; in reverse: facing out), splits it into two turns.
-    // The sense of the route's move into step i: forward when along its heading.
-    const auto forward_at = [&](size_t i) {
-      const GridCell a = route[i > 0 ? i - 1 : 0].cell, b = route[i].cell;
-      const int k = route[i].heading;
-      return (b.x - a.x) * H::kDx[k] + (b.y - a.y) * H::kDy[k] >= 0;
-    };
     const GridCell at = route[turn.first - 1].cell;
     const int in = route[turn.first - 1].heading, out = route[turn.after].heading;
     const bool forward_in = forward_at(turn.first - 1), forward_out = forward_at(turn.after);
@@ -455,7 +455,7 @@ std::vector<Pose2> Se2Planner::RouteWaypoints(const Pose2& start, const Pose2& g
           c = {c.x + H::kDx[arm], c.y + H::kDy[arm]};
           free = centre_cells_.Free(c.x, c.y);
         }
-            if (!free) continue;
+        if (!free) continue;
         const Pose2 w = CentredPose(c, forward_in ? arm : (arm + 4) % 8);
         if (checker_->Collides(w)) continue;
         waypoints.push_back(w);
