@@ -11,6 +11,7 @@
 
 #include "common/config.h"
 #include "planner/analytic_shot.h"
+#include "planner/corridor_route.h"
 #include "planner/grid_dijkstra.h"
 
 namespace minenav {
@@ -125,6 +126,14 @@ std::string ValidateOptions(const Se2PlannerOptions& o) {
   if (o.collision_discs < 1 || o.collision_discs > 64) return "collision_discs must be in [1, 64]";
   if (o.cached_goals < 1 || o.cached_goals > 64) return "cached_goals must be in [1, 64]";
   if (o.corridor_leg_expansions < 1) return "corridor_leg_expansions must be >= 1";
+  if (o.corridor_turn_expansions < 1) return "corridor_turn_expansions must be >= 1";
+  if (!(o.corridor_route_min_distance >= 0.0)) return "corridor_route_min_distance must be >= 0";
+  if (!(o.corridor_route_resolution > 0.0) || !std::isfinite(o.corridor_route_resolution))
+    return "corridor_route_resolution must be finite and > 0";
+  if (!(o.corridor_route_turn_cost >= 0.0) || !std::isfinite(o.corridor_route_turn_cost))
+    return "corridor_route_turn_cost must be finite and >= 0";
+  if (!(o.corridor_route_lead > 0.0) || !std::isfinite(o.corridor_route_lead))
+    return "corridor_route_lead must be finite and > 0";
   if (!(o.heuristic_turn_cost >= 0.0) || !std::isfinite(o.heuristic_turn_cost))
     return "heuristic_turn_cost must be finite and >= 0";
   return "";
@@ -155,6 +164,18 @@ void DeclareOptions(OptionScope scope, Se2PlannerOptions& o) {
                 "with heuristic_turn_cost: plan leg by leg through the middle of the 2-D path's straight runs");
   scope.AddInt("corridor_leg_expansions", &o.corridor_leg_expansions, "expansions a corridor leg may take", 1,
                100000000);
+  scope.AddBool("corridor_route", &o.corridor_route,
+                "first plan along the 2-D route: shots on its straight legs, a local search round each turn");
+  scope.AddDouble("corridor_route_turn_cost", &o.corridor_route_turn_cost, "m",
+                  "the corridor route's cost per 45 degrees of turning", 0.0, 1000.0);
+  scope.AddDouble("corridor_route_lead", &o.corridor_route_lead, "m",
+                  "route before and after a turn to its local search's start and goal", 0.01, 1000.0);
+  scope.AddDouble("corridor_route_min_distance", &o.corridor_route_min_distance, "m",
+                  "requests with the goal nearer the start than this are not routed", 0.0, 1e6);
+  scope.AddDouble("corridor_route_resolution", &o.corridor_route_resolution, "m", "cells of the corridor route's grid",
+                  0.01, 100.0);
+  scope.AddInt("corridor_turn_expansions", &o.corridor_turn_expansions, "expansions a leg of the corridor route may take",
+               1, 100000000);
   DeclareOptions(scope.Nested("costs"), o.costs);
 }
 
@@ -212,6 +233,9 @@ Se2Planner::Se2Planner(std::vector<Segment> map, Footprint footprint, Se2Planner
   for (int iy = 0; iy < frame.ny; ++iy)
     for (int ix = 0; ix < frame.nx; ++ix)
       roomy_cells_[centre_cells_.Index(ix, iy)] = field_->AtCell(ix, iy) + slack >= roomy ? 1 : 0;
+  if (options_.corridor_route)
+    route_grid_ = CoarseRouteGrid(frame, centre_cells_, roomy_cells_,
+                                  std::max(options_.corridor_route_resolution, frame.cell));
 }
 
 bool Se2Planner::PoseFree(const Pose2& pose) const { return checker_ && !checker_->Collides(pose); }
@@ -280,9 +304,10 @@ LazyGridDistances& Se2Planner::DistancesTo(GridCell goal) const {
   return *goal_distances_.front();
 }
 
-LazyHeadingGridDistances& Se2Planner::HeadingDistancesTo(GridCell goal, int heading) const {
+LazyHeadingGridDistances& Se2Planner::HeadingDistancesTo(GridCell goal, int heading, double turn_cost) const {
+  const double cell_turn_cost = turn_cost / field_->frame().cell;
   for (auto it = goal_heading_distances_.begin(); it != goal_heading_distances_.end(); ++it)
-    if ((*it)->source() == goal && (*it)->source_heading() == heading) {
+    if ((*it)->source() == goal && (*it)->source_heading() == heading && (*it)->turn_cost() == cell_turn_cost) {
       if (it != goal_heading_distances_.begin()) {
         auto hit = std::move(*it);
         goal_heading_distances_.erase(it);
@@ -291,7 +316,7 @@ LazyHeadingGridDistances& Se2Planner::HeadingDistancesTo(GridCell goal, int head
       return *goal_heading_distances_.front();
     }
   goal_heading_distances_.push_front(std::make_unique<LazyHeadingGridDistances>(
-      centre_cells_, goal, heading, options_.heuristic_turn_cost / field_->frame().cell,
+      centre_cells_, goal, heading, cell_turn_cost,
       std::max(1.0, options_.costs.reverse_factor), &roomy_cells_, 4.0));
   while (goal_heading_distances_.size() > static_cast<size_t>(options_.cached_goals))
     goal_heading_distances_.pop_back();
@@ -312,69 +337,132 @@ std::string Se2Planner::CheckPose(const Pose2& pose, const std::string& what) co
   return "";
 }
 
+GridCell Se2Planner::CentredCell(GridCell c, int heading) const {
+  // Across the heading (for x or y only): the cell of most clearance within 5 m.
+  if (heading % 2 == 1) return c;
+  const int px = heading % 4 == 0 ? 0 : 1, py = 1 - px;
+  const int reach = static_cast<int>(5.0 / field_->frame().cell);
+  GridCell best = c;
+  double best_clearance = field_->AtCell(c.x, c.y);
+  for (const int sign : {1, -1})
+    for (int j = 1; j <= reach; ++j) {
+      const int cx = c.x + sign * j * px, cy = c.y + sign * j * py;
+      if (!centre_cells_.Free(cx, cy)) break;
+      if (field_->AtCell(cx, cy) > best_clearance) best_clearance = field_->AtCell(cx, cy), best = {cx, cy};
+    }
+  return best;
+}
+
+Pose2 Se2Planner::CentredPose(GridCell c, int heading) const {
+  const GridFrame& frame = field_->frame();
+  const GridCell best = CentredCell(c, heading);
+  const Eigen::Vector2d centre = frame.CellMin(best.x, best.y) + Eigen::Vector2d::Constant(0.5 * frame.cell);
+  return Pose2(centre.x(), centre.y(), NormalizeAngle(heading * kPi / 4.0));
+}
+
+std::vector<RouteStep> Se2Planner::Route(const Pose2& start, const Pose2& goal, double turn_cost, bool coarse) const {
+  if (!Finite(start) || !Finite(goal)) return {};
+  const GridFrame& fine = field_->frame();
+  if (!coarse) {
+    LazyHeadingGridDistances& d = HeadingDistancesTo({fine.CellX(goal.x), fine.CellY(goal.y)},
+                                                     LazyHeadingGridDistances::HeadingOf(goal.theta), turn_cost);
+    return DescendRoute(d, centre_cells_, {fine.CellX(start.x), fine.CellY(start.y)},
+                        LazyHeadingGridDistances::HeadingOf(start.theta));
+  }
+  const GridFrame& frame = route_grid_.frame;
+  const GridCell goal_cell{frame.CellX(goal.x), frame.CellY(goal.y)};
+  const int goal_heading = LazyHeadingGridDistances::HeadingOf(goal.theta);
+  const double cell_turn_cost = turn_cost / frame.cell;
+  LazyHeadingGridDistances* d = nullptr;
+  for (auto it = route_distances_.begin(); it != route_distances_.end() && !d; ++it)
+    if ((*it)->source() == goal_cell && (*it)->source_heading() == goal_heading && (*it)->turn_cost() == cell_turn_cost)
+      d = it->get();
+  if (!d) {
+    route_distances_.push_front(std::make_unique<LazyHeadingGridDistances>(
+        route_grid_.cells, goal_cell, goal_heading, cell_turn_cost, std::max(1.0, options_.costs.reverse_factor),
+        &route_grid_.roomy, 4.0));
+    while (route_distances_.size() > static_cast<size_t>(options_.cached_goals)) route_distances_.pop_back();
+    d = route_distances_.front().get();
+  }
+  std::vector<RouteStep> route = DescendRoute(*d, route_grid_.cells, {frame.CellX(start.x), frame.CellY(start.y)},
+                                              LazyHeadingGridDistances::HeadingOf(start.theta));
+  for (RouteStep& step : route)  // to the field's cells
+    step.cell = {fine.CellX(frame.x0 + (step.cell.x + 0.5) * frame.cell),
+                 fine.CellY(frame.y0 + (step.cell.y + 0.5) * frame.cell)};
+  return route;
+}
+
 std::vector<Pose2> Se2Planner::CorridorWaypoints(const Pose2& start, const Pose2& goal) const {
   std::vector<Pose2> waypoints;
-  if (!(options_.heuristic_turn_cost > 0.0) || !Finite(start) || !Finite(goal)) return waypoints;
-  const GridFrame& frame = field_->frame();
-  LazyHeadingGridDistances& d = HeadingDistancesTo({frame.CellX(goal.x), frame.CellY(goal.y)},
-                                                   LazyHeadingGridDistances::HeadingOf(goal.theta));
-  using H = LazyHeadingGridDistances;
-  // Descend the (cell, heading) costs from the start state to the goal's: the runs of moves
-  // with one heading, each with its cells.
-  struct Run {
-    int heading;
-    std::vector<GridCell> cells;
-  };
-  std::vector<Run> runs;
-  int x = frame.CellX(start.x), y = frame.CellY(start.y), k = H::HeadingOf(start.theta);
-  double here = d.Distance(x, y, k);
-  if (here == kInf) return waypoints;
-  for (int guard = 0; here > 1e-9 && guard < 8 * frame.nx * frame.ny; ++guard) {
-    bool moved = false;
-    const double step = k % 2 == 1 ? std::numbers::sqrt2 : 1.0;
-    for (const int sign : {1, -1}) {
-      const int dx = sign * H::kDx[k], dy = sign * H::kDy[k];
-      if (!GridMoveAllowed(centre_cells_, x, y, dx, dy)) continue;
-      const double there = d.Distance(x + dx, y + dy, k);
-      if (std::abs(there + step * (sign > 0 ? 1.0 : d.reverse_factor()) - here) < 1e-6) {
-        if (runs.empty() || runs.back().heading != k) runs.push_back({k, {}});
-        x += dx, y += dy, here = there, moved = true;
-        runs.back().cells.push_back({x, y});
-        break;
-      }
-    }
-    if (moved) continue;
-    for (const int b : {(k + 1) % 8, (k + 7) % 8}) {
-      const double there = d.Distance(x, y, b);
-      if (std::abs(there + d.TurnCostAt(x, y) - here) < 1e-6) {
-        k = b, here = there, moved = true;
-        break;
-      }
-    }
-    if (!moved) return {};  // not a descent (rounding): plan without waypoints
-  }
+  if (!(options_.heuristic_turn_cost > 0.0)) return waypoints;
+  const std::vector<RouteStep> route = Route(start, goal, options_.heuristic_turn_cost, /*coarse=*/false);
+  // The runs of steps with one heading, as [first, end) indices.
+  std::vector<std::pair<size_t, size_t>> runs;
+  for (size_t i = 0; i < route.size(); ++i)
+    if (runs.empty() || route[i].heading != route[runs.back().first].heading)
+      runs.push_back({i, i + 1});
+    else
+      runs.back().second = i + 1;
   // A waypoint in the middle of every straight run along x or y between the first and the
   // last, centred across the corridor, with the run's heading.
   const double min_run = 2.0 * options_.turn_radius;
   for (size_t i = 1; i + 1 < runs.size(); ++i) {
-    const Run& run = runs[i];
-    if (run.heading % 2 == 1 || static_cast<double>(run.cells.size()) * frame.cell < min_run) continue;
-    const GridCell c = run.cells[run.cells.size() / 2];
-    // Across the run: the cell of most clearance within 5 m.
-    const int px = run.heading % 4 == 0 ? 0 : 1, py = 1 - px;
-    const int reach = static_cast<int>(5.0 / frame.cell);
-    GridCell best = c;
-    double best_clearance = field_->AtCell(c.x, c.y);
-    for (const int sign : {1, -1})
-      for (int j = 1; j <= reach; ++j) {
-        const int cx = c.x + sign * j * px, cy = c.y + sign * j * py;
-        if (!centre_cells_.Free(cx, cy)) break;
-        if (field_->AtCell(cx, cy) > best_clearance) best_clearance = field_->AtCell(cx, cy), best = {cx, cy};
-      }
-    const Eigen::Vector2d centre = frame.CellMin(best.x, best.y) + Eigen::Vector2d::Constant(0.5 * frame.cell);
-    const Pose2 w(centre.x(), centre.y(), NormalizeAngle(run.heading * kPi / 4.0));
+    const auto [first, end] = runs[i];
+    const int heading = route[first].heading;
+    if (heading % 2 == 1 || static_cast<double>(end - first) * field_->frame().cell < min_run) continue;
+    const Pose2 w = CentredPose(route[first + (end - first) / 2].cell, heading);
     if (checker_->Collides(w)) continue;
     waypoints.push_back(w);
+  }
+  return waypoints;
+}
+
+std::vector<Pose2> Se2Planner::RouteWaypoints(const Pose2& start, const Pose2& goal) const {
+  std::vector<Pose2> waypoints;
+  const std::vector<RouteStep> route = Route(start, goal, options_.corridor_route_turn_cost, /*coarse=*/true);
+  // Route steps are route_grid_ cells; the walk into a side arm is in the field's cells.
+  const size_t lead = static_cast<size_t>(std::lround(options_.corridor_route_lead / route_grid_.frame.cell));
+  const size_t arm_cells = static_cast<size_t>(std::lround(options_.corridor_route_lead / field_->frame().cell));
+  const auto add = [&](GridCell cell, int heading) {
+    const Pose2 w = CentredPose(cell, heading);
+    if (!checker_->Collides(w)) waypoints.push_back(w);
+  };
+  using H = LazyHeadingGridDistances;
+  // The sense of the route's move into step i: forward when along its heading.
+  const auto forward_at = [&](size_t i) {
+    const GridCell a = route[i > 0 ? i - 1 : 0].cell, b = route[i].cell;
+    const int k = route[i].heading;
+    return (b.x - a.x) * H::kDx[k] + (b.y - a.y) * H::kDy[k] >= 0;
+  };
+  for (const RouteTurn& turn : RouteTurns(route, lead)) {
+    if (turn.before > 0) add(route[turn.before].cell, route[turn.before].heading);
+    // Where the route changes between forward and reverse it turns in place at the crossing,
+    // which the vehicle does not fit to do: the real maneuver has a cusp in an arm of the
+    // crossing, so a waypoint `lead` into the first free arm, as the vehicle enters it
+    // (forward: facing into it; in reverse: facing out), splits it into two turns.
+    const GridCell at = route[turn.first - 1].cell;
+    const int in = route[turn.first - 1].heading, out = route[turn.after].heading;
+    const bool forward_in = forward_at(turn.first - 1), forward_out = forward_at(turn.after);
+    if (forward_in != forward_out) {
+      // Arms by the direction the vehicle drives into them; not the one it came from.
+      const int travel_in = forward_in ? in : (in + 4) % 8;
+      const int first_arm = forward_in ? out : (out + 4) % 8;
+      for (const int arm : {first_arm, (first_arm + 2) % 8, (first_arm + 6) % 8}) {
+        if (arm == (travel_in + 4) % 8 || arm % 2 == 1) continue;
+        GridCell c = CentredCell(at, arm);  // from the middle of the crossing across the arm
+        bool free = true;
+        for (size_t j = 0; j < arm_cells && free; ++j) {
+          c = {c.x + H::kDx[arm], c.y + H::kDy[arm]};
+          free = centre_cells_.Free(c.x, c.y);
+        }
+        if (!free) continue;
+        const Pose2 w = CentredPose(c, forward_in ? arm : (arm + 4) % 8);
+        if (checker_->Collides(w)) continue;
+        waypoints.push_back(w);
+        break;
+      }
+    }
+    if (turn.after + 1 < route.size()) add(route[turn.after].cell, route[turn.after].heading);
   }
   return waypoints;
 }
@@ -394,11 +482,45 @@ void AddCounts(Se2PlanResult& into, const Se2PlanResult& other) {
 }  // namespace
 
 Se2PlanResult Se2Planner::Plan(const Pose2& start, const Pose2& goal, const SearchLimits& limits) const {
-  if (!setup_error_.empty() || !options_.corridor_waypoints) return Search(start, goal, limits);
-  const std::vector<Pose2> waypoints = CorridorWaypoints(start, goal);
-  if (waypoints.empty()) return Search(start, goal, limits);
-  // Leg by leg; the first leg that fails gives way to the whole search.
+  const bool waypoints_on = options_.corridor_waypoints && options_.heuristic_turn_cost > 0.0;
+  const bool route_on = options_.corridor_route && Finite(start) && Finite(goal) &&
+                        std::hypot(goal.x - start.x, goal.y - start.y) >= options_.corridor_route_min_distance;
+  if (!setup_error_.empty() || (!waypoints_on && !route_on)) return Search(start, goal, limits);
+  // The shot from the start first: where it is free (a box cut, a whole entry) neither the
+  // (cell, heading) costs behind the waypoints nor a leg is needed.
+  const Se2PlanResult direct = Search(start, goal, limits, /*shot_only=*/true);
+  if (direct.status != SearchStatus::kNoPath) return direct;
+  Se2PlanResult spent;  // the work of the attempts that gave way
+  if (route_on) {
+    Se2PlanResult routed = PlanThrough(start, RouteWaypoints(start, goal), goal, limits,
+                                       options_.corridor_turn_expansions);
+    if (routed.status == SearchStatus::kFound || routed.status == SearchStatus::kStopped) return routed;
+    AddCounts(spent, routed);
+  }
+  Se2PlanResult r;
+  if (waypoints_on) {
+    SearchLimits rest = limits;
+    rest.max_expansions = std::max<int64_t>(1, limits.max_expansions - spent.expansions);
+    r = PlanThrough(start, CorridorWaypoints(start, goal), goal, rest, options_.corridor_leg_expansions);
+    if (r.status != SearchStatus::kFound && r.status != SearchStatus::kStopped) {
+      AddCounts(spent, r);
+      r = {};
+    }
+  }
+  if (r.expansions == 0 && r.status != SearchStatus::kFound) {
+    SearchLimits rest = limits;
+    rest.max_expansions = std::max<int64_t>(1, limits.max_expansions - spent.expansions);
+    r = Search(start, goal, rest);
+  }
+  AddCounts(r, spent);
+  return r;
+}
+
+Se2PlanResult Se2Planner::PlanThrough(const Pose2& start, const std::vector<Pose2>& waypoints, const Pose2& goal,
+                                      const SearchLimits& limits, int64_t leg_expansions) const {
   Se2PlanResult total;
+  if (waypoints.empty()) return total;  // kNoPath, no work: the caller searches the whole
+  // Leg by leg; the first leg that fails gives way (kNoPath with the legs' work counted).
   total.status = SearchStatus::kFound;
   total.path.start = start;
   std::vector<MotionPiece> pieces;
@@ -406,32 +528,30 @@ Se2PlanResult Se2Planner::Plan(const Pose2& start, const Pose2& goal, const Sear
   for (size_t i = 0; i <= waypoints.size(); ++i) {
     const Pose2 to = i < waypoints.size() ? waypoints[i] : goal;
     SearchLimits leg = limits;
-    leg.max_expansions =
-        std::min<int64_t>(options_.corridor_leg_expansions, limits.max_expansions - total.expansions);
-    if (leg.max_expansions < 1) break;
-    Se2PlanResult r = Search(from, to, leg);
-    if (r.status == SearchStatus::kStopped) {
-      AddCounts(r, total);  // the earlier legs' work
+    leg.max_expansions = std::min<int64_t>(leg_expansions, limits.max_expansions - total.expansions);
+    Se2PlanResult r;
+    if (leg.max_expansions >= 1) r = Search(from, to, leg);
+    if (r.status == SearchStatus::kStopped && r.expansions < leg.max_expansions) {
+      AddCounts(r, total);  // stopped by the caller (deadline, states), not by the leg's budget
       return r;
     }
     AddCounts(total, r);
     if (r.status != SearchStatus::kFound) {
-      SearchLimits rest = limits;
-      rest.max_expansions = std::max<int64_t>(1, limits.max_expansions - total.expansions);
-      Se2PlanResult whole = Search(start, goal, rest);
-      AddCounts(whole, total);
-      return whole;
+      total.status = SearchStatus::kNoPath;
+      total.reason = "a corridor leg failed";
+      total.path = {};
+      return total;
     }
     total.cost += r.cost;
     pieces.insert(pieces.end(), r.path.pieces.begin(), r.path.pieces.end());
     from = to;
   }
-  if (from.x != goal.x || from.y != goal.y) return Search(start, goal, limits);
   total.path.pieces = MergePieces(pieces);
   return total;
 }
 
-Se2PlanResult Se2Planner::Search(const Pose2& start_in, const Pose2& goal_in, const SearchLimits& limits) const {
+Se2PlanResult Se2Planner::Search(const Pose2& start_in, const Pose2& goal_in, const SearchLimits& limits,
+                                 bool shot_only) const {
   Se2PlanResult result;
   const auto invalid = [&](const std::string& reason) {
     result.status = SearchStatus::kInvalidRequest;
@@ -464,6 +584,47 @@ Se2PlanResult Se2Planner::Search(const Pose2& start_in, const Pose2& goal_in, co
     return result;
   };
 
+  const MotionCosts& costs = options_.costs;
+  const double r = options_.turn_radius;
+  // The analytic shot from `pose`: the cheapest obstacle-free shots that are short enough,
+  // cheapest first; the first free one, or null.
+  std::vector<AnalyticShot> shots;
+  const auto free_shot = [&](const Pose2& pose, int direction) -> const AnalyticShot* {
+    shots = AnalyticShots(pose, goal, r, costs, direction);
+    for (const AnalyticShot& shot : shots) {
+      if (shot.cost > options_.analytic_shot_max_cost_ratio * shots.front().cost) break;  // cheapest first
+      double length = 0.0;
+      for (const MotionPiece& p : shot.pieces) length += p.motion == Motion::kTurnInPlace ? 0.0 : p.amount;
+      if (length > options_.analytic_shot_max_length) continue;
+      ++result.shots_tried;
+      bool free = true;
+      Pose2 from = pose;
+      for (const MotionPiece& p : shot.pieces) {
+        if (PieceCollides(from, p)) {
+          free = false;
+          break;
+        }
+        from = p.end;
+      }
+      if (free) return &shot;
+    }
+    return nullptr;
+  };
+  // The simple case first (thesis 6.2.2: "gradient descent for the simple ones"): the shot
+  // from the start, before the 2-D heuristic is settled (a 100 m entry's Dijkstra costs far
+  // more than the shot's sweep). It is the shot the search's first expansion would try, so
+  // the answer is the search's, only sooner.
+  const SearchStatus first = CheckLimits(limits, 0, 1);
+  if (first != SearchStatus::kFound) return finish(first, LimitReason(first, 0, 1));
+  if (const AnalyticShot* shot = free_shot(start, 0)) {
+    result.path.start = start;
+    result.path.pieces = MergePieces(shot->pieces);
+    result.cost = shot->cost;
+    result.expansions = result.states = 1;
+    return finish(SearchStatus::kFound, "");
+  }
+  if (shot_only) return finish(SearchStatus::kNoPath, "no analytic shot from the start is free");
+
   // 2-D part of the heuristic: distances from the goal over the cells the centre may be in,
   // settled on demand and kept for the next request to the same goal cell.
   const GridFrame& frame = field_->frame();
@@ -473,7 +634,7 @@ Se2PlanResult Se2Planner::Search(const Pose2& start_in, const Pose2& goal_in, co
   const bool axis_term = options_.heuristic_turn_cost > 0.0;
   LazyGridDistances* to_goal = axis_term ? nullptr : &DistancesTo(goal_cell);
   LazyHeadingGridDistances* to_goal_axis =
-      axis_term ? &HeadingDistancesTo(goal_cell, LazyHeadingGridDistances::HeadingOf(goal.theta)) : nullptr;
+      axis_term ? &HeadingDistancesTo(goal_cell, LazyHeadingGridDistances::HeadingOf(goal.theta), options_.heuristic_turn_cost) : nullptr;
   const auto distance_2d = [&](double x, double y, double theta) {
     const double d = axis_term ? to_goal_axis->Distance(frame.CellX(x), frame.CellY(y), LazyHeadingGridDistances::HeadingOf(theta))
                                : to_goal->Distance(frame.CellX(x), frame.CellY(y));
@@ -483,8 +644,6 @@ Se2PlanResult Se2Planner::Search(const Pose2& start_in, const Pose2& goal_in, co
     return finish(SearchStatus::kNoPath,
                   "the goal is not reachable: no corridor wide enough for the footprint's inscribed circle joins "
                   "start and goal");
-  const MotionCosts& costs = options_.costs;
-  const double r = options_.turn_radius;
   const auto heuristic = [&](const Pose2& p, int direction) {
     const double d2 = distance_2d(p.x, p.y, p.theta);
     if (d2 == kInf) return kInf;
@@ -550,28 +709,12 @@ Se2PlanResult Se2Planner::Search(const Pose2& start_in, const Pose2& goal_in, co
     const double g = current.g, spare = current.spare;
     const int direction = current.direction, heading = current.heading;
 
-    // The analytic shot: the cheapest obstacle-free shots that are short enough, first free one wins.
-    if (result.expansions % options_.analytic_shot_interval == 1 || options_.analytic_shot_interval == 1 ||
-        key(pose.x, pose.y, heading) == goal_key) {
-      const std::vector<AnalyticShot> shots = AnalyticShots(pose, goal, r, costs, direction);
-      for (const AnalyticShot& shot : shots) {
-        if (shot.cost > options_.analytic_shot_max_cost_ratio * shots.front().cost) break;  // cheapest first
-        double length = 0.0;
-        for (const MotionPiece& p : shot.pieces) length += p.motion == Motion::kTurnInPlace ? 0.0 : p.amount;
-        if (length > options_.analytic_shot_max_length) continue;
-        ++result.shots_tried;
-        bool free = true;
-        Pose2 from = pose;
-        for (const MotionPiece& p : shot.pieces) {
-          if (PieceCollides(from, p)) {
-            free = false;
-            break;
-          }
-          from = p.end;
-        }
-        if (!free) continue;
-        result.path = path_to(e.node, shot.pieces);
-        result.cost = g + shot.cost;
+    // The analytic shot (the start's was tried before the search).
+    if (e.node != 0 && (result.expansions % options_.analytic_shot_interval == 1 ||
+                        options_.analytic_shot_interval == 1 || key(pose.x, pose.y, heading) == goal_key)) {
+      if (const AnalyticShot* shot = free_shot(pose, direction)) {
+        result.path = path_to(e.node, shot->pieces);
+        result.cost = g + shot->cost;
         result.states = static_cast<int64_t>(nodes.size());
         return finish(SearchStatus::kFound, "");
       }

@@ -30,6 +30,7 @@
 #include "common/pose2.h"
 #include "common/segment_index.h"
 #include "planner/clearance_field.h"
+#include "planner/corridor_route.h"
 #include "planner/footprint.h"
 #include "planner/footprint_collision.h"
 #include "planner/grid_dijkstra.h"
@@ -75,6 +76,20 @@ struct Se2PlannerOptions {
   // true.
   bool corridor_waypoints = true;
   int corridor_leg_expansions = 100000;  // expansions a leg may take. Default 100,000.
+  // A hierarchical first attempt (corridor_route.h): the 2-D route from start to goal over
+  // (cell, 45-degree heading) with turns charged corridor_route_turn_cost, a waypoint
+  // corridor_route_lead before and after each of its turns (centred across the entry, heading
+  // along it); the straight legs between are analytic shots, each turn a local search of at
+  // most corridor_turn_expansions. When a leg fails, Plan goes on as without it. Default true.
+  bool corridor_route = true;
+  double corridor_route_turn_cost = 6.0;  // m per 45 degrees of the route's turns. Default 6.
+  double corridor_route_lead = 12.0;      // m of route before and after a turn's waypoints. Default 12.
+  // m: requests whose goal is nearer the start than this are not routed (a maneuver at a
+  // face: the full search is fast there, and the route's cusps in side arms would lengthen
+  // its path many times). Default 50.
+  double corridor_route_min_distance = 50.0;
+  double corridor_route_resolution = 1.0;  // m, cells of the route's grid. Default 1.
+  int corridor_turn_expansions = 5000;    // expansions a leg of the route may take. Default 5,000.
   MotionCosts costs;
 };
 
@@ -107,6 +122,10 @@ class Se2Planner {
   // The waypoints a Plan would go through (tests, bench).
   std::vector<Pose2> Waypoints(const Pose2& start, const Pose2& goal) const {
     return setup_error_.empty() ? CorridorWaypoints(start, goal) : std::vector<Pose2>{};
+  }
+  // The corridor route's waypoints a Plan with corridor_route would go through (tests, bench).
+  std::vector<Pose2> TurnWaypoints(const Pose2& start, const Pose2& goal) const {
+    return setup_error_.empty() ? RouteWaypoints(start, goal) : std::vector<Pose2>{};
   }
 
   // Is the pose clear of the walls with the requested clearance (plus the sampling half-step)?
@@ -144,18 +163,36 @@ class Se2Planner {
   static constexpr double kMaxFieldCells = 33554432.0;
 
   std::string CheckPose(const Pose2& pose, const std::string& what) const;
-  // The whole search from start to goal (Plan without the corridor waypoints).
-  Se2PlanResult Search(const Pose2& start, const Pose2& goal, const SearchLimits& limits) const;
+  // The whole search from start to goal (Plan without the corridor waypoints). `shot_only`:
+  // the request's checks and the analytic shot from the start only (kNoPath when none is free).
+  Se2PlanResult Search(const Pose2& start, const Pose2& goal, const SearchLimits& limits,
+                       bool shot_only = false) const;
   // The corridor waypoints between start and goal (empty when the axis path has no turn, or
   // no waypoint is free).
   std::vector<Pose2> CorridorWaypoints(const Pose2& start, const Pose2& goal) const;
+  // The corridor route's waypoints (corridor_route): before and after each turn.
+  std::vector<Pose2> RouteWaypoints(const Pose2& start, const Pose2& goal) const;
+  // The (cell, heading) route from start to goal with turns at turn_cost m per 45 degrees.
+  // On the field's cells, or on route_grid_'s (`coarse`); the steps' cells are the field's.
+  std::vector<RouteStep> Route(const Pose2& start, const Pose2& goal, double turn_cost, bool coarse) const;
+  // The pose at the centre of `cell` moved across its heading (x or y) to the cell of most
+  // clearance within 5 m, with that heading.
+  Pose2 CentredPose(GridCell cell, int heading) const;
+  // The cell of most clearance across `heading` (x or y; diagonals: `cell`) within 5 m.
+  GridCell CentredCell(GridCell cell, int heading) const;
+  // Leg by leg through the waypoints, each leg at most leg_expansions: kFound with the chained
+  // path, kStopped when the caller's limits stopped a leg, else kNoPath with the legs' work
+  // (no waypoints: kNoPath and no work).
+  Se2PlanResult PlanThrough(const Pose2& start, const std::vector<Pose2>& waypoints, const Pose2& goal,
+                            const SearchLimits& limits, int64_t leg_expansions) const;
   // The swept primitives for headings phase + k * bin, k = 0 .. heading_bins - 1 (cached for
   // the last phase asked).
   const std::vector<SweptPrimitive>& PrimitivesFor(double phase) const;
   // The 2-D distances to the goal cell (cached for the last cached_goals goals).
   LazyGridDistances& DistancesTo(GridCell goal) const;
-  // The (cell, heading) costs to the goal's state, when heuristic_turn_cost > 0.
-  LazyHeadingGridDistances& HeadingDistancesTo(GridCell goal, int heading) const;
+  // The (cell, heading) costs to the goal's state with turns at turn_cost m per 45 degrees
+  // (cached with the 2-D distances' count).
+  LazyHeadingGridDistances& HeadingDistancesTo(GridCell goal, int heading, double turn_cost) const;
 
   std::vector<Segment> map_;
   Footprint footprint_;
@@ -167,6 +204,8 @@ class Se2Planner {
   std::unique_ptr<FootprintCollisionChecker> checker_;
   OccupancyGrid centre_cells_;  // the field's cells where the vehicle's centre may be
   std::vector<uint8_t> roomy_cells_;  // centre cells with room to turn (heuristic_turn_cost)
+  RouteGrid route_grid_;              // the corridor route's coarse cells (corridor_route)
+  mutable std::deque<std::unique_ptr<LazyHeadingGridDistances>> route_distances_;  // most recent first
   double largest_clearance_ = 0.0;
   mutable double primitives_phase_ = std::numeric_limits<double>::quiet_NaN();
   mutable std::vector<SweptPrimitive> primitives_;  // [heading * 8 + primitive]

@@ -532,6 +532,47 @@ TEST(Se2PlannerTest, DrivesThroughACorridor) {
   EXPECT_NE(back.status, SearchStatus::kFound);
 }
 
+TEST(Se2PlannerTest, AFreeShotFromTheStartIsTheAnswerWithoutASearch) {
+  // A 148 m straight run along a 6 m entry: the straight shot from the start is free, so it is
+  // the answer (optimal: the straight line), found before the 2-D heuristic or any expansion.
+  const std::vector<Segment> map = planner_test::Corridor(160, 6);
+  const Se2Planner planner(map, Footprint::Rectangle(3.3, 10.0), {});
+  const Pose2 s(6, 0.2, 0.0), g(154, 0.2, 0.0);
+  const Se2PlanResult r = planner.Plan(s, g);
+  ASSERT_EQ(r.status, SearchStatus::kFound) << r.reason;
+  EXPECT_EQ(r.expansions, 1);
+  EXPECT_NEAR(r.path.Length(), 148.0, 1e-6);
+  EXPECT_NEAR(r.cost, 148.0, 1e-6);
+  const auto report = testing::CheckPath(map, s, AsChecked(r.path), CheckerFor(planner));
+  EXPECT_TRUE(report.ok) << report.problem;
+  // Also with the heading-aware term and its corridor waypoints: the shot comes first.
+  Se2PlannerOptions guided;
+  guided.heuristic_turn_cost = 6.0;
+  const Se2Planner guided_planner(map, Footprint::Rectangle(3.3, 10.0), guided);
+  const Se2PlanResult rg = guided_planner.Plan(s, g);
+  ASSERT_EQ(rg.status, SearchStatus::kFound) << rg.reason;
+  EXPECT_EQ(rg.expansions, 1);
+  EXPECT_NEAR(rg.path.Length(), 148.0, 1e-6);
+  // The stop request is still heard before that shot.
+  SearchLimits stopped;
+  stopped.stop_requested = [] { return true; };
+  EXPECT_EQ(planner.Plan(s, g, stopped).status, SearchStatus::kStopped);
+  // A shot that is blocked (a 1.8 m stub from the entry's side wall in the middle) is not
+  // taken: the search goes round it.
+  std::vector<Segment> stub = planner_test::Corridor(60, 6);
+  stub.push_back({30, -3, 30, -1.2});
+  const Se2Planner around(stub, Footprint::Rectangle(3.3, 10.0), {});
+  const Pose2 s2(6, 0, 0.0), g2(54, 0, 0.0);
+  EXPECT_TRUE(around.PieceCollides(s2, {Motion::kForward, 48.0, 0.0, g2}));
+  SearchLimits bounded;
+  bounded.max_expansions = 50000;
+  const Se2PlanResult a = around.Plan(s2, g2, bounded);
+  ASSERT_EQ(a.status, SearchStatus::kFound) << a.reason;
+  EXPECT_GT(a.expansions, 1);
+  const auto report2 = testing::CheckPath(stub, s2, AsChecked(a.path), CheckerFor(around));
+  EXPECT_TRUE(report2.ok) << report2.problem;
+}
+
 TEST(Se2PlannerTest, TurnsACornerWhereTurningInPlaceDoesNotFit) {
   // A 10 m x 3.3 m miner in the south entry of a crossing of two 6 m entries turns into the
   // east crosscut. Turning in place at the crossing does not fit (its circle is 10.5 m

@@ -289,9 +289,14 @@ TEST(TaskPlannerNode, AZlibMapALineMapAndTheDeadline) {
   plans = late.WaitForPlans(1);
   ASSERT_EQ(plans.size(), 1u);
   EXPECT_EQ(plans[0].status, task_plan_t::FAILED);
-  EXPECT_EQ(plans[0].reason.rfind("deadline: planning was stopped at 0.001 s: move into position for the box cut: ", 0),
-            0u)
-      << plans[0].reason;
+  // Which maneuver the deadline stops depends on the machine (the move into position is one
+  // free analytic shot, tens of microseconds; the slab cut's reposition a search of ms).
+  EXPECT_EQ(plans[0].reason.rfind("deadline: planning was stopped at 0.001 s: ", 0), 0u) << plans[0].reason;
+  const bool names_a_maneuver = plans[0].reason.find("move into position for the box cut: ") != std::string::npos ||
+                                plans[0].reason.find("reposition for slab cut ") != std::string::npos ||
+                                plans[0].reason.find("back out") != std::string::npos;
+  EXPECT_TRUE(names_a_maneuver) << plans[0].reason;
+  EXPECT_NE(plans[0].reason.find("stopped"), std::string::npos) << plans[0].reason;
 }
 
 TEST(TaskPlannerNode, OptionsAreValidated) {
