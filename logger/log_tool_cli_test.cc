@@ -49,6 +49,51 @@ void ExpectInputError(const RunResult& r, const std::string& needle, const std::
   }
 }
 
+// Issue 16: a logger killed mid-write and restarted writes the next part; `join` keeps every
+// whole event of every part, in order, drops the torn one and names it in one line.
+TEST(LogToolCli, JoinKeepsTheWholeEventsOfEveryPartAndNamesATornEnd) {
+  const std::string a = TempPath("mission.lcm.00"), b = TempPath("mission.lcm.01"), out = TempPath("joined.lcm");
+  auto write_part = [](const std::string& path, int first, int count) {
+    LogWriter w(path);
+    for (int i = first; i < first + count; ++i) {
+      const std::string payload = "event " + std::to_string(i);
+      w.Write("CHANNEL_" + std::to_string(i % 3), 1000 * i, payload.data(), static_cast<int>(payload.size()));
+    }
+    w.Close();
+  };
+  write_part(a, 0, 10);
+  write_part(b, 10, 5);
+  // The first part's writer died in the middle of its last event.
+  const std::string whole = ReadAll(a);
+  { std::ofstream(a, std::ios::binary | std::ios::trunc) << whole.substr(0, whole.size() - 4); }
+  const RunResult r = LogTool("join " + out + " " + a + " " + b);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_NE(r.err.find(a + ": torn at its end"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("the 9 whole events before it kept"), std::string::npos) << r.err;
+  LogReader joined(out);
+  std::vector<int> kept;
+  while (auto e = joined.Next()) {
+    const std::string text(e->data.begin(), e->data.end());
+    const int i = std::stoi(text.substr(6));
+    EXPECT_EQ(e->channel, "CHANNEL_" + std::to_string(i % 3));
+    EXPECT_EQ(e->timestamp, 1000 * i);
+    kept.push_back(i);
+  }
+  EXPECT_EQ(joined.truncation(), "");
+  EXPECT_EQ(kept, (std::vector<int>{0, 1, 2, 3, 4, 5, 6, 7, 8, 10, 11, 12, 13, 14}));
+  // Damage inside a part (not at its end) is an error: no output.
+  std::string damaged = ReadAll(b);
+  damaged[damaged.size() / 2] = '\xff';
+  damaged.replace(0, 4, "XXXX");  // the first event's sync word
+  { std::ofstream(b, std::ios::binary | std::ios::trunc) << damaged; }
+  const std::string out2 = TempPath("joined2.lcm");
+  const RunResult bad = LogTool("join " + out2 + " " + b);
+  EXPECT_EQ(bad.exit_code, 2) << bad.err;
+  EXPECT_FALSE(FileExists(out2));
+  EXPECT_EQ(LogTool("join " + a + " " + a).exit_code, 2);  // OUT is a part
+}
+
 // A small world and stations written by log_tool generate.
 struct Inputs {
   std::string world, stations;

@@ -19,6 +19,7 @@ int RunRelationsCommand(const std::vector<std::string>& args);     // relations_
 int RunMissionReportCommand(const std::vector<std::string>& args); // mission_report_command.cc
 int RunSpyCommand(const std::vector<std::string>& args);           // spy_command.cc
 int RunExportMcapCommand(const std::vector<std::string>& args);    // export_mcap_command.cc
+int RunJoinCommand(const std::vector<std::string>& args);          // join_command.cc
 
 // Removes every occurrence of --name VALUE / --name=VALUE from args and returns the values
 // in order (for flags that may repeat, which ConfigSchema does not support).

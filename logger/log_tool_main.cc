@@ -33,6 +33,7 @@ constexpr const char* kOverview =
     "  mission-report  judge a finished mission (log, true world, final map, coordinator's report):\n"
     "            a report (Markdown), every figure (JSON), a picture (SVG, PNG)\n"
     "  spy       a terminal spy of the bus (or of a log): rates, sizes, bad messages, decoded fields\n"
+    "  join      one log from the parts of a recording (a restarted logger's parts), torn ends dropped\n"
     "  export-mcap  an LCM log as MCAP (JSON channels, Foxglove schemas) for Foxglove and Lichtblick\n"
     "\n"
     "Exit codes: 0 ok, 2 bad flags or input (one line on stderr, no output file written),\n"
@@ -65,6 +66,7 @@ int main(int argc, char** argv) {
     if (sub == "mission-report") return minenav::RunMissionReportCommand(args);
     if (sub == "spy") return minenav::RunSpyCommand(args);
     if (sub == "export-mcap") return minenav::RunExportMcapCommand(args);
+    if (sub == "join") return minenav::RunJoinCommand(args);
     std::fprintf(stderr, "log_tool: error: unknown subcommand '%s' (see log_tool --help)\n", sub.c_str());
     return minenav::kExitUsage;
   } catch (const minenav::UsageError& e) {

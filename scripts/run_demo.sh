@@ -176,6 +176,12 @@ case $status in
   *) echo "== the fleet ended with exit code $status (see $out/fleet.log and $out/coordinator.log)" ;;
 esac
 
+# The logger's parts (lcm-logger --increment: a logger restarted after a crash writes the next
+# one) as one log; a part torn by its writer's death keeps its whole events (log_tool join).
+parts=("$out"/mission.lcm.[0-9][0-9])
+if [ -e "${parts[0]}" ]; then
+  "$bin/log_tool" join "$out/mission.lcm" "${parts[@]}" && rm -f "${parts[@]}"
+fi
 [ -s "$out/mission.lcm" ] || { echo "run_demo.sh: no log was recorded ($out/mission.lcm)" >&2; exit 3; }
 echo "== the contour map rebuilt from the log (batch mapper, same policy)"
 "$bin/contour_mapper" --log "$out/mission.lcm" --insert-min-translation 1.0 --insert-min-rotation 0.3 \
