@@ -71,7 +71,8 @@ number='^[0-9]+([.][0-9]+)?$'
   { echo "run_demo.sh: --max-stations must be a whole number >= 1" >&2; exit 2; }
 [[ "$port" =~ ^[0-9]+$ && "$port" -ge 1024 && "$port" -le 65535 ]] ||
   { echo "run_demo.sh: --port must be a UDP port from 1024 to 65535" >&2; exit 2; }
-processes=(vehicle_sim ladar_driver contour_mapper path_planner path_tracker cutter task_planner coordinator)
+programs=(vehicle_sim ladar_driver contour_mapper path_planner path_tracker cutter task_planner coordinator)
+processes=("${programs[@]}" lcm_logger)  # --kill names: the fleet file's processes
 for k in "${kills[@]}"; do
   [[ "$k" =~ ^([a-z_]+)@([0-9]+([.][0-9]+)?)$ ]] && [[ " ${processes[*]} " == *" ${BASH_REMATCH[1]} "* ]] ||
     { echo "run_demo.sh: --kill takes NAME@SECONDS with NAME one of: ${processes[*]} (got '$k')" >&2; exit 2; }
@@ -81,10 +82,10 @@ if [ -z "$bin" ]; then
   minenav_install_deps
   build="$MINENAV_ROOT/build/release"
   echo "== building in $build"
-  minenav_build "$build" -DMINENAV_WERROR=ON -- "${processes[@]}" log_tool fleet auth_keygen
+  minenav_build "$build" -DMINENAV_WERROR=ON -- "${programs[@]}" log_tool fleet auth_keygen
   bin="$build/bin"
 else
-  for p in "${processes[@]}" log_tool fleet auth_keygen; do
+  for p in "${programs[@]}" log_tool fleet auth_keygen; do
     [ -x "$bin/$p" ] || { echo "run_demo.sh: --bin $bin has no program $p" >&2; exit 2; }
   done
   bin="$(cd "$bin" && pwd)"
@@ -142,7 +143,8 @@ supervise="$out/.supervise.sh"
     group="$(awk -v p="[process $name]" '$0 == p { on = 1; next } /^\[/ { on = 0 } on && $1 == "group" { print $3 }' \
              "$MINENAV_ROOT/fleet/mission.fleet")"
     echo "if [ \"\$groups\" = all ] || [ \"\$groups\" = $group ]; then"
-    echo "  (sleep $at; pkill -9 -P \$f -x $name && echo \"== fault: kill -9 $name, $at s into the mission\") &"
+    program="$name"; [ "$name" = lcm_logger ] && program=lcm-logger  # the fleet's name, the program's
+    echo "  (sleep $at; pkill -9 -P \$f -x $program && echo \"== fault: kill -9 $name, $at s into the mission\") &"
     echo "fi"
   done
   echo 'if [ -n "$ended" ] && [ "$groups" = vehicle ]; then'
