@@ -32,6 +32,7 @@
 #include "minenav/vehicle_truth_t.hpp"
 #include "tests/bus/private_bus_test.h"
 #include "tests/child_process.h"
+#include "tests/sanitizer.h"
 #include "tests/temp_dir.h"
 
 namespace minenav {
@@ -285,8 +286,9 @@ TEST_F(VehicleStopBusTest, TheVehicleStopsWithin200MsOfLosingPosePathOrCommands)
     std::printf("stop after losing %-8s: %6.1f ms sim time, %6.1f ms wall\n", l.what.c_str(), l.sim_ms, l.wall_ms);
     RecordProperty("stop_ms_sim_" + l.what, static_cast<int>(std::lround(l.sim_ms)));
     RecordProperty("stop_ms_wall_" + l.what, static_cast<int>(std::lround(l.wall_ms)));
-    EXPECT_LE(l.sim_ms, 200.0) << l.what;
-    EXPECT_LE(l.wall_ms, 200.0) << l.what;
+    // The requirement; under ASan/UBSan (kSlowdown) the processes are slower, not the design.
+    EXPECT_LE(l.sim_ms, 200.0 * testing::kSlowdown) << l.what;
+    EXPECT_LE(l.wall_ms, 200.0 * testing::kSlowdown) << l.what;
     EXPECT_GE(l.sim_ms, -60.0) << l.what << ": stopped before the loss (one sim tick of slack)";
   }
 }
