@@ -55,7 +55,6 @@ void WriteNewFile(const std::string& path, const std::string& tmp, const std::st
     std::remove(tmp.c_str());
     throw InputError(path + ": cannot create with mode " + std::to_string(o.mode));
   }
-  const bool durable = o.durable;
   size_t written = 0;
   while (written < content.size()) {
     const ssize_t n = ::write(fd, content.data() + written, content.size() - written);
@@ -63,7 +62,7 @@ void WriteNewFile(const std::string& path, const std::string& tmp, const std::st
     if (n <= 0) break;
     written += static_cast<size_t>(n);
   }
-  const bool ok = written == content.size() && (!durable || ::fsync(fd) == 0);
+  const bool ok = written == content.size() && (!o.durable || ::fsync(fd) == 0);
   const int error = errno;
   if (::close(fd) != 0 || !ok) {
     std::remove(tmp.c_str());

@@ -27,8 +27,19 @@ constexpr double kMaxAreaCells = 4e6;
 
 double Seconds(int64_t from, int64_t to) { return static_cast<double>(to - from) * 1e-6; }
 
+constexpr MissionState kEndStates[] = {MissionState::kDone, MissionState::kFailed, MissionState::kAborted};
+
 bool IsEnd(MissionState s) {
-  return s == MissionState::kDone || s == MissionState::kFailed || s == MissionState::kAborted;
+  for (MissionState end : kEndStates)
+    if (s == end) return true;
+  return false;
+}
+
+// The same for a state as the coordinator's report names it ("DONE", ...).
+bool IsEndName(const std::string& name) {
+  for (MissionState end : kEndStates)
+    if (name == ToString(end)) return true;
+  return false;
 }
 
 // task_status_t's state names (the coordinator has none for TaskState).
@@ -97,7 +108,7 @@ TimeFigures MissionTimes(const MissionRecord& log, const MissionReport* report) 
   if (report && !report->state.empty() && !end) {
     t.final_state = report->state;
     t.final_message = report->message;
-    if (start && (report->state == "DONE" || report->state == "FAILED" || report->state == "ABORTED"))
+    if (start && IsEndName(report->state))
       t.mission_s = Seconds(*start, log.last_utime);  // ended after the log's last status
   }
   return t;
