@@ -320,6 +320,8 @@ std::string MissionFiguresToJson(const MissionInputs& in, const MissionFigures& 
               {"seconds", f.time.log_s},
               {"bad_messages", log.bad_messages},
               {"first_bad", log.first_bad},
+              {"auth_refused", log.auth_refused},
+              {"first_auth_refused", log.first_auth_refused},
               {"damage", log.damage},
               {"truth_poses", log.truth.size()},
               {"estimates", log.estimates.size()},
@@ -571,6 +573,9 @@ std::string MissionReportMarkdown(const MissionInputs& in, const MissionFigures&
   md << "## Inputs\n\n- world: " << in.world_source << "\n- map: " << in.map_source << "\n- log: " << in.log.events
      << " events, " << in.log.bad_messages << " messages not decoded"
      << (in.log.first_bad.empty() ? "" : " (first: " + Cell(in.log.first_bad) + ")") << "\n";
+  if (in.log.auth_refused > 0)
+    md << "- refused by authentication (the fleet's key): " << in.log.auth_refused
+       << " messages on signed channels, not used (first: " << Cell(in.log.first_auth_refused) << ")\n";
   if (!in.log.damage.empty()) md << "- log damaged: " << in.log.damage << " (what came before is used)\n";
   md << "- stations: " << f.stations.size() << " (" << f.stations_source << ")\n";
   return md.str();

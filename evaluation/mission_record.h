@@ -76,6 +76,9 @@ struct MissionRecord {
   int64_t events = 0;
   int64_t bad_messages = 0;            // on the channels read, messages that did not decode or were invalid
   std::string first_bad;               // one line: the first of them
+  int64_t auth_refused = 0;            // read with the fleet's key: messages on signed channels that did
+                                       // not verify (forged, replayed, tampered, unsigned): not used
+  std::string first_auth_refused;      // one line: the first of them
   std::string damage;                  // "" or where the log is damaged (what was before is used)
 };
 

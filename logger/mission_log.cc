@@ -55,13 +55,24 @@ Enum CheckedState(int value, int max, const char* what) {
 
 class MissionLogReader {
  public:
-  explicit MissionLogReader(const MissionLogChannels& c) : c_(c) {}
+  MissionLogReader(const MissionLogChannels& c, const MissionLogAuth* auth)
+      : c_(c), auth_(auth), verifier_(auth != nullptr ? static_cast<int64_t>(std::llround(auth->max_age * 1e6)) : 1) {}
 
   void Read(const LogEvent& e) {
     MissionRecord& r = out_.record;
     if (r.events == 0) r.first_utime = e.timestamp;
     r.last_utime = e.timestamp;
     ++r.events;
+    if (auth_ != nullptr && auth_->signed_channels.count(e.channel) != 0) {
+      const VerifyOutcome v =
+          verifier_.Verify(auth_->keys, e.channel, e.data.data(), static_cast<int>(e.data.size()), e.timestamp);
+      if (v.result != AuthResult::kAccepted) {
+        if (r.auth_refused++ == 0)
+          r.first_auth_refused = "event " + std::to_string(e.eventnum) + ", channel " + e.channel + ": " +
+                                 AuthResultName(v.result);
+        return;
+      }
+    }
     try {
       Dispatch(e);
     } catch (const InputError& err) {
@@ -134,13 +145,15 @@ class MissionLogReader {
   MissionLog out_;
   std::set<std::pair<int64_t, int64_t>> stations_;  // (plan id, task id)
   std::optional<LogEvent> last_map_;
+  const MissionLogAuth* auth_;
+  MessageVerifier verifier_;
 };
 
 }  // namespace
 
-MissionLog ReadMissionLog(const std::string& path, const MissionLogChannels& channels) {
+MissionLog ReadMissionLog(const std::string& path, const MissionLogChannels& channels, const MissionLogAuth* auth) {
   LogReader reader(path);
-  MissionLogReader read(channels);
+  MissionLogReader read(channels, auth);
   std::string damage;
   try {
     while (const LogEvent* e = reader.NextInPlace()) read.Read(*e);

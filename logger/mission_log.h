@@ -10,8 +10,11 @@
 // MissionRecord::damage says where: the report is made from what came before.
 
 #include <optional>
+#include <set>
 #include <string>
 
+#include "common/message_auth.h"
+#include "common/node/auth_bus.h"
 #include "common/node/contour_map_conversions.h"
 #include "evaluation/mission_record.h"
 
@@ -31,12 +34,22 @@ struct MissionLogChannels {
   std::string contour_map = "CONTOUR_MAP";
 };
 
+// The fleet's key, to read a log as the fleet's receivers did: a message on a signed channel
+// that does not verify (an attacker's forgery, replay, tampering or unsigned copy; the event's
+// timestamp is its receive time) is counted in MissionRecord::auth_refused and not used.
+struct MissionLogAuth {
+  AuthKeyRing keys;
+  std::set<std::string, std::less<>> signed_channels = ParseChannelList(AuthOptions{}.signed_channels);
+  double max_age = AuthOptions{}.max_age;  // s
+};
+
 struct MissionLog {
   MissionRecord record;
   std::optional<ContourMapMessage> last_contour_map;  // the last CONTOUR_MAP that decoded
 };
 
 // Throws InputError when the file cannot be opened.
-MissionLog ReadMissionLog(const std::string& path, const MissionLogChannels& channels = {});
+MissionLog ReadMissionLog(const std::string& path, const MissionLogChannels& channels = {},
+                          const MissionLogAuth* auth = nullptr);
 
 }  // namespace minenav

@@ -6,15 +6,20 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+
 #include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "common/auth_key_file.h"
 #include "common/file_io.h"
+#include "common/message_auth.h"
 #include "common/node/contour_map_conversions.h"
 #include "common/node/conversions.h"
 #include "common/node/event_log.h"
 #include "logger/log_tool_run.h"
+#include "logger/mission_log.h"
 #include "logger/test_logs.h"
 #include "minenav/heartbeat_t.hpp"
 #include "minenav/mission_status_t.hpp"
@@ -290,6 +295,58 @@ TEST(MissionReportCli, ABadMessageIsCountedAndADamagedLogReadUpToTheDamage) {
   EXPECT_FALSE(k["log"]["damage"].get<std::string>().empty());
   EXPECT_EQ(k["pose_error"]["estimate"]["compared"], 70);
   EXPECT_TRUE(k["time"]["mission_s"].is_null());  // the DONE status was the event cut off
+}
+
+// An attacker's messages in the log (forged, replayed, tampered, unsigned planner answers on the
+// signed PATH channel): read with the fleet's key, none of them enters the figures.
+TEST(MissionReportCli, WithTheFleetsKeyAnAttackersMessagesAreCountedAndNotUsed) {
+  const MissionFiles f = WriteMission();
+  const std::string key = TempPath("fleet.key");
+  const AuthKeyRing keys{{RandomAuthKey(1)}};
+  SaveAuthKeyFile(key, keys);
+  const std::string log = TempPath("attacked.lcm");
+  {
+    LogWriter w(log);
+    LogReader in(f.log);
+    const MissionLogAuth fleet{keys};  // its signed channels: the hand-made log's are unsigned, left out
+    while (const LogEvent* e = in.NextInPlace())
+      if (fleet.signed_channels.count(e->channel) == 0) w.Write(e->channel, e->timestamp, e->data.data(), static_cast<int>(e->data.size()));
+    MessageSigner planner(RandomSenderId()), attacker(RandomSenderId());
+    const auto sign = [](MessageSigner& by, const AuthKeyRing& k, const path_t& m) {
+      const std::vector<uint8_t> body = EncodeMessage(m);
+      return by.Sign(k, "PATH", body.data(), static_cast<int>(body.size()), m.utime);
+    };
+    const std::vector<uint8_t> good =
+        sign(planner, keys, Path(1.5, 1, "ok: 12.00 m, 1 pieces, 0 reversals, 50 expansions, 4.0 ms on map version 1"));
+    w.Write("PATH", At(1.5), good.data(), static_cast<int>(good.size()));
+    std::vector<uint8_t> tampered = good;
+    tampered[40] ^= 1;
+    const std::vector<uint8_t> forged = sign(attacker, AuthKeyRing{{RandomAuthKey(1)}}, NoPathToLcm(5, At(2), "no_path: forged"));
+    const std::vector<uint8_t> unsigned_answer = EncodeMessage(NoPathToLcm(6, At(2.5), "no_path: unsigned"));
+    for (const std::vector<uint8_t>* m : std::vector<const std::vector<uint8_t>*>{&good, &tampered, &forged, &unsigned_answer})
+      w.Write("PATH", At(3), m->data(), static_cast<int>(m->size()));
+    w.Close();
+  }
+  const RunResult r = LogTool("mission-report --log " + log + " --key-file " + key + " --json-out " + TempPath("a.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(ReadAll(TempPath("a.json")));
+  EXPECT_EQ(j["log"]["auth_refused"], 4);  // the replay of the good answer, tampered, forged, unsigned
+  EXPECT_NE(j["log"]["first_auth_refused"].get<std::string>().find("PATH: replayed"), std::string::npos)
+      << j["log"]["first_auth_refused"];
+  EXPECT_EQ(j["log"]["bad_messages"], 0);
+  EXPECT_EQ(j["planning"]["searches"], 1);
+  EXPECT_EQ(j["planning"]["refused"], 0);
+  EXPECT_NE(r.err.find("4 messages refused by authentication"), std::string::npos) << r.err;
+  // Without the key the attacker's answers are read like any other: two refusals that never were.
+  const RunResult open = LogTool("mission-report --log " + log + " --json-out " + TempPath("o.json"));
+  ASSERT_EQ(open.exit_code, 0) << open.err;
+  const nlohmann::json k = nlohmann::json::parse(ReadAll(TempPath("o.json")));
+  EXPECT_EQ(k["log"]["auth_refused"], 0);
+  EXPECT_EQ(k["planning"]["refused"], 2);
+  // A key file others may read is refused, as the fleet's processes refuse it.
+  chmod(key.c_str(), 0644);
+  const RunResult loose = LogTool("mission-report --log " + log + " --key-file " + key + " --json-out " + TempPath("l.json"));
+  EXPECT_EQ(loose.exit_code, 2) << loose.err;
 }
 
 TEST(MissionReportCli, BadInputIsRefusedWithOneLineAndNothingWritten) {

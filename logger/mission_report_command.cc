@@ -8,9 +8,11 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "common/auth_key_file.h"
 #include "common/config.h"
 #include "common/file_io.h"
 #include "evaluation/mission_evaluation.h"
@@ -95,6 +97,10 @@ int RunMissionReportCommand(const std::vector<std::string>& raw_args) {
   std::string note_help;  // --note is taken out above; listed here for --help
   schema.AddString("note", &note_help, "a line to add to the report and the picture (repeat for several), e.g. the run's speed");
   schema.AddString("title", &picture.title, "the picture's title");
+  std::string key_file;
+  schema.AddString("key_file", &key_file,
+                   "the fleet's key file (run_demo.sh's OUT/fleet.key): messages on the signed channels that do not\n"
+                   "verify (an attacker's) are counted and not used; without it every message is read");
   DeclareOptions(OptionScope(schema), options);
   const OptionScope ch = OptionScope(schema).Nested("channel");
   ch.AddString("truth", &channels.truth, "channel of the true poses (vehicle_truth_t)");
@@ -129,7 +135,9 @@ int RunMissionReportCommand(const std::vector<std::string>& raw_args) {
                                "installs it: source scripts/common.sh; minenav_install_deps)");
   }
 
-  MissionLog log = ReadMissionLog(log_path, channels);
+  std::optional<MissionLogAuth> auth;
+  if (!key_file.empty()) auth = MissionLogAuth{LoadAuthKeyFile(key_file)};
+  MissionLog log = ReadMissionLog(log_path, channels, auth ? &*auth : nullptr);
   MissionInputs in;
   in.log = std::move(log.record);
   in.notes = notes;
@@ -185,6 +193,9 @@ int RunMissionReportCommand(const std::vector<std::string>& raw_args) {
   if (in.log.bad_messages > 0)
     std::fprintf(stderr, "log_tool mission-report: %lld messages skipped (first: %s)\n",
                  static_cast<long long>(in.log.bad_messages), in.log.first_bad.c_str());
+  if (in.log.auth_refused > 0)
+    std::fprintf(stderr, "log_tool mission-report: %lld messages refused by authentication, not used (first: %s)\n",
+                 static_cast<long long>(in.log.auth_refused), in.log.first_auth_refused.c_str());
   if (!in.log.damage.empty())
     std::fprintf(stderr, "log_tool mission-report: the log is damaged (%s): the report is made from what came before\n",
                  in.log.damage.c_str());

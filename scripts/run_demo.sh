@@ -2,7 +2,8 @@
 # The main job: the whole mission on the fleet's built-in simulated mine, live on the LCM bus.
 #
 #   scripts/run_demo.sh [--seed S] [--fast F] [--depth D] [--out DIR] [--small] [--max-stations N]
-#                       [--two-hosts] [--kill NAME@SECONDS]... [--port P] [--bin DIR]
+#                       [--two-hosts] [--kill NAME@SECONDS]... [--attack S@LENGTH] [--port P]
+#                       [--bin DIR]
 #
 # Generates a room-and-pillar section (thesis 5.2.1; 7 m entries: the 3.3 x 10 m miner's turn
 # into a crosscut needs more than 6 m, planner/README.md) and runs the mission's fleet
@@ -40,11 +41,18 @@
 # when the base's mission has ended. fleet_vehicle.log and fleet_base.log hold their tables.
 # --kill NAME@SECONDS (repeatable): a fault: kill -9 the process NAME that many seconds into the
 # mission; its supervisor restarts it (fleet/README.md) and the mission goes on or stops with
-# the reason. --port: the bus's UDP port (default 7667). --bin DIR: use the programs in DIR as
-# they are (built elsewhere, e.g. by the tests) instead of building build/release.
+# the reason. --attack S@LENGTH: an attacker without the key on the vehicle's network
+# (tests/bus/command_attacker): it records the signed command channels from the start, then from
+# S seconds into the mission for LENGTH seconds publishes replayed, forged, tampered and
+# unsigned copies (5 rounds a second) on every one of them; what it sent is in
+# command_attacker.txt, what each process refused in the last line of its NAME.log ("stopping:
+# ... refused by authentication: CHANNEL COUNT ...", common/node/README.md "Security"); the
+# report reads the log with the fleet's key and uses none of them.
+# --port: the bus's UDP port (default 7667). --bin DIR: use the programs in DIR as they are
+# (built elsewhere, e.g. by the tests) instead of building build/release.
 source "$(dirname "$0")/common.sh"
 
-seed=7 fast=6 depth=1.0 out="" small=0 max_stations=30 two_hosts=0 port=7667 bin="" kills=()
+seed=7 fast=6 depth=1.0 out="" small=0 max_stations=30 two_hosts=0 port=7667 bin="" kills=() attack=""
 while [ $# -gt 0 ]; do
   case "$1" in
     --seed) seed="$2"; shift 2 ;;
@@ -55,6 +63,7 @@ while [ $# -gt 0 ]; do
     --max-stations) max_stations="$2"; shift 2 ;;
     --two-hosts) two_hosts=1; shift ;;
     --kill) kills+=("$2"); shift 2 ;;
+    --attack) attack="$2"; shift 2 ;;
     --port) port="$2"; shift 2 ;;
     --bin) bin="$2"; shift 2 ;;
     -h|--help) awk 'NR > 1 && /^#/ { print; next } NR > 1 { exit }' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
@@ -77,15 +86,21 @@ for k in "${kills[@]}"; do
   [[ "$k" =~ ^([a-z_]+)@([0-9]+([.][0-9]+)?)$ ]] && [[ " ${processes[*]} " == *" ${BASH_REMATCH[1]} "* ]] ||
     { echo "run_demo.sh: --kill takes NAME@SECONDS with NAME one of: ${processes[*]} (got '$k')" >&2; exit 2; }
 done
+tools=(log_tool fleet auth_keygen)
+if [ -n "$attack" ]; then
+  [[ "$attack" =~ ^([0-9]+([.][0-9]+)?)@([0-9]+([.][0-9]+)?)$ ]] ||
+    { echo "run_demo.sh: --attack takes SECONDS@LENGTH, e.g. 60@300 (got '$attack')" >&2; exit 2; }
+  tools+=(command_attacker)
+fi
 
 if [ -z "$bin" ]; then
   minenav_install_deps
   build="$MINENAV_ROOT/build/release"
   echo "== building in $build"
-  minenav_build "$build" -DMINENAV_WERROR=ON -- "${programs[@]}" log_tool fleet auth_keygen
+  minenav_build "$build" -DMINENAV_WERROR=ON -- "${programs[@]}" "${tools[@]}"
   bin="$build/bin"
 else
-  for p in "${programs[@]}" log_tool fleet auth_keygen; do
+  for p in "${programs[@]}" "${tools[@]}"; do
     [ -x "$bin/$p" ] || { echo "run_demo.sh: --bin $bin has no program $p" >&2; exit 2; }
   done
   bin="$(cd "$bin" && pwd)"
@@ -147,6 +162,14 @@ supervise="$out/.supervise.sh"
     echo "  (sleep $at; pkill -9 -P \$f -x $program && echo \"== fault: kill -9 $name, $at s into the mission\") &"
     echo "fi"
   done
+  if [ -n "$attack" ]; then
+    # On the vehicle's network (the one host, or the vehicle of two): it listens from the start.
+    echo 'if [ "$groups" = all ] || [ "$groups" = vehicle ]; then'
+    printf '  (%q --capture %q --attack %q --rate 5 > %q 2> %q && echo %q) &\n' "$bin/command_attacker" \
+      "${attack%@*}" "${attack#*@}" "$out/command_attacker.txt" "$out/command_attacker.log" \
+      "== attack: ${attack#*@} s of replayed, forged, tampered and unsigned commands ended (command_attacker.txt)"
+    echo 'fi'
+  fi
   echo 'if [ -n "$ended" ] && [ "$groups" = vehicle ]; then'
   echo '  while kill -0 $f 2>/dev/null && [ ! -e "$ended" ]; do sleep 0.5; done'
   echo '  kill -INT $f 2>/dev/null'
@@ -190,7 +213,7 @@ echo "== the contour map rebuilt from the log (batch mapper, same policy)"
   --final-refinement-rounds 2 --map-out "$out/contour_map_batch.json" --svg-out "$out/contour_map_batch.svg" \
   2> "$out/contour_mapper_batch.log" || echo "   (the batch mapper failed: $out/contour_mapper_batch.log)"
 echo "== the report"
-report_args=(--log "$out/mission.lcm" --world "$out/mine.json" --report-out "$out/report.md"
+report_args=(--log "$out/mission.lcm" --key-file "$out/fleet.key" --world "$out/mine.json" --report-out "$out/report.md"
              --json-out "$out/report.json" --svg-out "$out/mission.svg" --png-out "$out/mission.png"
              --note "speed factor $fast: tramming at $(times 0.076) m/s, the cutter's speeds x $fast (the real miner: x 1)")
 [ -s "$out/contour_map.json" ] && report_args+=(--map "$out/contour_map.json")

@@ -92,14 +92,22 @@ bool AuthBus::Verify(const RawMessage& raw, RawMessage* out) {
 }
 
 void AuthBus::Subscribe(const std::string& channel, RawHandler handler) {
-  inner_->Subscribe(channel, [this, handler = std::move(handler)](const RawMessage& raw) {
+  auto [it, first] = handlers_.try_emplace(channel);
+  if (!first) {
+    it->second->push_back(std::move(handler));
+    return;
+  }
+  it->second = std::make_unique<std::vector<RawHandler>>(1, std::move(handler));
+  inner_->Subscribe(channel, [this, &handlers = *it->second](const RawMessage& raw) {
     RawMessage message = raw;
     if (IsSigned(raw.channel) && !Verify(raw, &message)) return;
     // Caught here so the failure is counted on this bus (the one HEARTBEAT reports), not the inner one.
-    try {
-      handler(message);
-    } catch (const std::exception& e) {
-      ReportBad(raw.channel, "channel " + std::string(raw.channel) + ": handler failed: " + e.what());
+    for (size_t i = 0; i < handlers.size(); ++i) {  // by index: a handler may subscribe another
+      try {
+        handlers[i](message);
+      } catch (const std::exception& e) {
+        ReportBad(raw.channel, "channel " + std::string(raw.channel) + ": handler failed: " + e.what());
+      }
     }
   });
 }

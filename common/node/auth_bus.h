@@ -14,6 +14,7 @@
 // replay would need a receipt id from the transport).
 
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <set>
 #include <string>
@@ -62,6 +63,9 @@ class AuthBus final : public Bus {
 
   std::unique_ptr<Bus> inner_;
   const Clock& clock_;
+  // The handlers of each subscribed pattern: one inner subscription per pattern verifies a
+  // message once and hands it to all of them (a second verification would see a replay).
+  std::map<std::string, std::unique_ptr<std::vector<RawHandler>>, std::less<>> handlers_;
   std::set<std::string, std::less<>> signed_channels_;
   AuthKeyFileWatcher watcher_;
   std::string reported_key_error_;

@@ -99,12 +99,34 @@ TEST(AuthBus, ForgedReplayedUnsignedAndTamperedCommandsNeverReachTheHandler) {
   EXPECT_EQ(p.receiver->counters().messages_bad, 5);
   EXPECT_EQ(p.receiver->counters().auth_rejected, 5);
   EXPECT_EQ(p.receiver->bad_by_channel().at("DRIVE_COMMAND"), 5);
+  EXPECT_EQ(p.receiver->auth_rejected_by_channel().at("DRIVE_COMMAND"), 5);
   EXPECT_NE(p.receiver->last_auth_rejection().find("too old"), std::string::npos) << p.receiver->last_auth_rejection();
+  // The line the process logs when it stops names them per channel (mission_test.sh reads it).
+  const std::string summary = ExitSummary(*p.receiver);
+  EXPECT_NE(summary.find("1 message(s) handled, 5 bad"), std::string::npos) << summary;
+  EXPECT_NE(summary.find("; refused by authentication: DRIVE_COMMAND 5"), std::string::npos) << summary;
   // A fresh one still passes.
   Publish(*p.publisher, "DRIVE_COMMAND", Drive(5, 0.02));
   p.Carry();
   ASSERT_EQ(p.drives.size(), 2u);
   EXPECT_EQ(p.drives[1].seq, 5);
+}
+
+TEST(AuthBus, TwoSubscriptionsToASignedChannelBothGetEachMessageOnce) {
+  Pair p;
+  std::vector<int64_t> second;
+  Subscribe<drive_command_t>(*p.receiver, "DRIVE_COMMAND", [&](const drive_command_t& m) { second.push_back(m.seq); });
+  Publish(*p.publisher, "DRIVE_COMMAND", Drive(1, 0.05));
+  Publish(*p.publisher, "DRIVE_COMMAND", Drive(2, 0.05));
+  const std::vector<uint8_t> replay = p.sent->published()[0].data;
+  p.Carry();
+  p.received->Inject("DRIVE_COMMAND", replay, p.clock.NowUtime());
+  p.received->HandleFor(0);
+  ASSERT_EQ(p.drives.size(), 2u);
+  EXPECT_EQ(second, (std::vector<int64_t>{1, 2}));
+  EXPECT_EQ(p.receiver->counters().messages_in, 4);
+  // The replay is refused once, for both subscriptions.
+  EXPECT_EQ(p.receiver->counters().auth_rejected, 1);
 }
 
 TEST(AuthBus, ARotatedKeyFileIsPickedUpByPublisherAndReceiver) {

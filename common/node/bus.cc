@@ -47,6 +47,9 @@ bool Bus::AcceptStamp(const RawMessage& raw, int64_t stamp, const char* type_nam
 
 void Bus::ReportUnauthenticated(std::string_view channel, const std::string& why) {
   ++counters_.auth_rejected;
+  auto it = auth_rejected_by_channel_.find(channel);
+  if (it == auth_rejected_by_channel_.end()) it = auth_rejected_by_channel_.emplace(std::string(channel), 0).first;
+  ++it->second;
   last_auth_rejection_ = why;
   ReportBad(channel, why);
 }

@@ -93,6 +93,10 @@ class Bus {
   bool AcceptStamp(const RawMessage& raw, int64_t stamp, const char* type_name);
   // Bad messages per channel, for tests and for log_tool info.
   const std::map<std::string, int64_t, std::less<>>& bad_by_channel() const { return bad_by_channel_; }
+  // Messages refused by authentication per channel (of bad_by_channel), for the exit summary.
+  const std::map<std::string, int64_t, std::less<>>& auth_rejected_by_channel() const {
+    return auth_rejected_by_channel_;
+  }
 
  protected:
   void CountPublished(bool ok, const std::string& channel);
@@ -102,6 +106,7 @@ class Bus {
  private:
   BusCounters counters_;
   std::map<std::string, int64_t, std::less<>> bad_by_channel_;
+  std::map<std::string, int64_t, std::less<>> auth_rejected_by_channel_;
   std::string last_stamp_rejection_;
   std::string last_auth_rejection_;
   int64_t max_stamp_lead_us_ = 0;

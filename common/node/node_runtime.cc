@@ -371,10 +371,25 @@ int NodeRuntime::Run() {
   }
 }
 
+std::string ExitSummary(const Bus& bus) {
+  const BusCounters& c = bus.counters();
+  std::string line = "stopping: " + std::to_string(c.messages_in) + " message(s) handled, " +
+                     std::to_string(c.messages_bad) + " bad, " + std::to_string(c.published) + " published";
+  if (c.stamps_rejected > 0) line += "; rejected for their timestamps: " + std::to_string(c.stamps_rejected);
+  if (!bus.auth_rejected_by_channel().empty()) {
+    line += "; refused by authentication:";
+    for (const auto& [channel, count] : bus.auth_rejected_by_channel()) {
+      line += " " + channel + " " + std::to_string(count);
+    }
+  }
+  return line;
+}
+
 void NodeRuntime::Shutdown() {
   if (shut_down_ || bus_ == nullptr) return;
   shut_down_ = true;
   NotifyService("STOPPING=1");
+  MINENAV_LOG(kInfo) << ExitSummary(*bus_);
   for (auto& hook : shutdown_hooks_) hook();
   if (options_.heartbeat_period > 0) PublishHeartbeat(heartbeat_t::STOPPING);
   if (log_bus_ != nullptr) {

@@ -172,6 +172,11 @@ class NodeRuntime {
   std::string last_service_status_;
 };
 
+// The line a process logs when it stops: what its bus handled, refused and published, with the
+// messages refused by authentication per channel ("...; refused by authentication: DRIVE_COMMAND
+// 12 CUTTER_COMMAND 3"), which tests/bus/mission_test.sh compares with what an attacker sent.
+std::string ExitSummary(const Bus& bus);
+
 // Runs a process's main body: one-line error and exit code 2 for UsageError and
 // InputError (bad flags, config or input files), 3 for any other failure.
 int RunNodeMain(const std::string& process, const std::function<int()>& body);

@@ -97,7 +97,7 @@ TEST_F(CommandAuthBusTest, ForgedReplayedTamperedAndUnsignedCommandsNeverMoveThe
   };
 
   // 1. The attacker listens for 3 s while a signed sender drives for 1 s.
-  ChildProcess attacker({MINENAV_COMMAND_ATTACKER_BIN, "--capture", "3", "--attack", "3"}, dir / "attacker.txt");
+  ChildProcess attacker({MINENAV_COMMAND_ATTACKER_BIN, "--channel", "DRIVE_COMMAND", "--capture", "3", "--attack", "3"}, dir / "attacker.txt");
   Pump(bus, 0.8);
   const int64_t drive1 = drive_signed(1.0);
   const Motion moved1 = MotionBetween(truth, drive1, NowUtime());

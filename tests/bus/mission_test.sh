@@ -2,7 +2,10 @@
 # The whole mission in CI (issue 15), shortened: the README's main job (scripts/run_demo.sh)
 # on the one-pillar section with a 0.5 m advance, split across two hosts (vehicle and base
 # station, ttl=1) and with a fault: the path tracker is killed with SIGKILL while the
-# exploration drives. Then judged from what the run leaves, against the true world:
+# exploration drives; and with an attacker on the vehicle's network (run_demo.sh --attack,
+# tests/bus/command_attacker.cc) that, from 60 s in and for 360 s, publishes replayed, forged,
+# tampered and unsigned copies of every signed command channel. Then judged from what the run
+# leaves, against the true world:
 #
 #   tests/bus/mission_test.sh BIN_DIR PORT [KILL...]
 #
@@ -15,7 +18,11 @@
 #     on it, never on the truth);
 #   - every cut the plan asked for (box and slab) as deep as requested within the report's
 #     tolerance (5 cm), in the true world and in the live contour map: none flagged;
-#   - the log replays: the report read every event of it without a bad message.
+#   - the log replays: the report read every event of it without a bad message;
+#   - the attack was refused whole: on every channel it attacked, a process that listens there
+#     refused by authentication exactly as many messages as the attacker sent (so none reached
+#     a handler: the vehicle never moved on them), and no process refused more on any channel;
+#     the report, reading the log with the fleet's key, used none of them.
 set -euo pipefail
 bin="$1" port="$2"
 shift 2
@@ -37,6 +44,7 @@ kill_args=()
 for k in "${kills[@]}"; do kill_args+=(--kill "$k"); done
 status=0
 "$root/scripts/run_demo.sh" --bin "$bin" --small --fast 6 --port "$port" --two-hosts "${kill_args[@]}" \
+  --attack 60@360 \
   --out "$work/out" > "$work/run.txt" 2>&1 || status=$?
 grep -E "^\[(vehicle|base)\] \[ *[0-9]+:[0-9]+\]|== " "$work/run.txt" | tail -n 40
 [ $status -eq 0 ] || { tail -n 30 "$work/run.txt"; fail "run_demo.sh exited $status"; }
@@ -76,6 +84,46 @@ for c in r["cuts"]:
          f"{c['kind']}: {c['truth']['median_m']:.3f} m of {c['requested_m']:.2f} m in the true world, {c['state']}")
     need(not c["map_off"], f"{c['kind']}: {c['map']['median_m']:.3f} m in the live contour map (the ladar saw the cut)")
 need(r["log"]["bad_messages"] == 0 and not r["log"]["damage"], f"log: {r['log']['events']} events, {r['log']['bad_messages']} bad")
+sys.exit(1 if bad else 0)
+PY
+# The attack: what command_attacker sent per channel against what each process refused there
+# (the last "stopping: ..." line of its log, common/node/node_runtime.h ExitSummary).
+python3 - "$work/out" <<'PY' || fail "the attack was not refused whole (above)"
+import glob, os, re, sys
+out = sys.argv[1]
+sent = {}
+for line in open(os.path.join(out, "command_attacker.txt")):
+    m = re.match(r"(\S+) replayed (\d+) forged (\d+) tampered (\d+) unsigned (\d+)$", line.strip())
+    if m:
+        sent[m.group(1)] = sum(int(g) for g in m.groups()[1:])
+refused = {}  # process -> {channel: count}
+for log in sorted(glob.glob(os.path.join(out, "*.log"))):
+    last = [l for l in open(log, errors="replace") if "stopping: " in l]
+    if last and "refused by authentication:" in last[-1]:
+        words = last[-1].split("refused by authentication:")[1].split()
+        refused[os.path.basename(log)[:-4]] = {words[i]: int(words[i + 1]) for i in range(0, len(words) - 1, 2)}
+bad = []
+if not sent or min(sent.values()) == 0:
+    bad.append(f"the attacker sent nothing on some channel: {sent}")
+for channel, n in sorted(sent.items()):
+    who = {p: c[channel] for p, c in refused.items() if channel in c}
+    exact = [p for p, c in who.items() if c == n]
+    print(f"{'ok     ' if exact else 'MISSED '} {channel}: attacker sent {n}, refused by {who or 'nobody'}")
+    if not exact:
+        bad.append(channel)
+for p, c in refused.items():
+    for channel, n in c.items():
+        if n > sent.get(channel, 0):
+            print(f"MISSED  {p} refused {n} on {channel}, more than the attacker sent ({sent.get(channel, 0)})")
+            bad.append(p)
+# The report read the log with the fleet's key: the attacker's messages it met were not used.
+import json
+log = json.load(open(os.path.join(out, "report.json")))["log"]
+total = sum(sent.values())
+ok = 0 < log["auth_refused"] <= total
+print(f"{'ok     ' if ok else 'MISSED '} the report refused {log['auth_refused']} logged messages (the attacker sent {total})")
+if not ok:
+    bad.append("report")
 sys.exit(1 if bad else 0)
 PY
 echo "mission_test: passed"
