@@ -1,7 +1,9 @@
 #include "common/node/map_updates.h"
 
+#include <exception>
 #include <utility>
 
+#include "common/log.h"
 #include "common/node/conversions.h"
 #include "minenav/contour_map_t.hpp"
 #include "minenav/line_map_t.hpp"
@@ -30,11 +32,48 @@ MapUpdates::MapUpdates(Bus& bus, const std::string& line_channel, const std::str
   });
 }
 
-void MapUpdates::Offer(std::vector<Segment> segments, const std::string& what) {
-  if (maps_handed_on_ > 0 && SameSegments(last_, segments)) return;
+void MapUpdates::SetRateBound(const Clock& clock, int64_t min_interval_us) {
+  clock_ = &clock;
+  min_interval_us_ = min_interval_us;
+}
+
+bool MapUpdates::Due() const {
+  if (clock_ == nullptr || min_interval_us_ <= 0 || !last_attempt_us_) return true;
+  const int64_t now = clock_->NowUtime();
+  return now < *last_attempt_us_ || now - *last_attempt_us_ >= min_interval_us_;  // a clock set back: due
+}
+
+void MapUpdates::HandOn(std::vector<Segment> segments, const std::string& what) {
+  waiting_.reset();
+  if (clock_ != nullptr) last_attempt_us_ = clock_->NowUtime();  // a refused map cost its work too
   on_new_map_(segments, what);
   last_ = std::move(segments);
   ++maps_handed_on_;
+}
+
+void MapUpdates::Offer(std::vector<Segment> segments, const std::string& what) {
+  if (maps_handed_on_ > 0 && SameSegments(last_, segments)) {
+    waiting_.reset();  // the map in use is the latest again
+    return;
+  }
+  if (waiting_ && SameSegments(waiting_->segments, segments)) return;
+  if (!Due()) {
+    waiting_ = Waiting{std::move(segments), what};
+    return;
+  }
+  HandOn(std::move(segments), what);
+}
+
+bool MapUpdates::HandOnDue() {
+  if (!waiting_ || !Due()) return false;
+  Waiting w = std::move(*waiting_);
+  try {
+    HandOn(std::move(w.segments), w.what);
+  } catch (const std::exception& e) {
+    MINENAV_LOG(kWarn) << w.what << " refused: " << e.what();
+    return false;
+  }
+  return true;
 }
 
 }  // namespace minenav

@@ -80,5 +80,65 @@ TEST(MapUpdatesTest, ABadMapReachesTheBusAsABadMessageAndTheLastGoodMapStands) {
   EXPECT_EQ(updates.maps_handed_on(), 1);
 }
 
+// The rate bound: a changed map on every message (a map per scan, 10 a second) is handed on
+// once per interval, the latest of those that waited; a republished map in use cancels one
+// that waits.
+TEST(MapUpdatesTest, WithARateBoundAChangedMapPerMessageIsHandedOnOncePerInterval) {
+  FakeBus bus;
+  ManualClock clock(1'000'000);
+  Received got;
+  MapUpdates updates(bus, "LINE_MAP", "", Record(&got));
+  updates.SetRateBound(clock, 1'000'000);
+  auto map = [](int i) { return std::vector<Segment>{{0, 0, 4, 0}, {4, 0, 4, 3.0 + 0.01 * i}}; };
+  // 30 maps, each different, 0.1 s apart; HandOnDue before each (where a node takes a scan).
+  for (int i = 0; i < 30; ++i) {
+    updates.HandOnDue();
+    bus.InjectMessage("LINE_MAP", SegmentsToLcm(map(i), i + 1, i + 1, "mine"));
+    bus.HandleFor(0);
+    clock.Advance(100'000);
+  }
+  // The first at once (t = 1.0 s), then the latest waiting at 2.0 s (map 9: maps 1..9 arrived
+  // within the interval) and at 3.0 s (map 19); map 29 still waits.
+  ASSERT_EQ(got.maps.size(), 3u);
+  EXPECT_TRUE(SameSegments(got.maps[0], map(0)));
+  EXPECT_TRUE(SameSegments(got.maps[1], map(9)));
+  EXPECT_TRUE(SameSegments(got.maps[2], map(19)));
+  EXPECT_TRUE(updates.map_waiting());
+  clock.Advance(1'000'000);
+  EXPECT_TRUE(updates.HandOnDue());
+  ASSERT_EQ(got.maps.size(), 4u);
+  EXPECT_TRUE(SameSegments(got.maps[3], map(29)));
+  EXPECT_FALSE(updates.HandOnDue());  // nothing waits
+
+  // A map waits; the map in use arrives again: nothing is handed on.
+  bus.InjectMessage("LINE_MAP", SegmentsToLcm(map(40), 40, 40, "mine"));
+  bus.InjectMessage("LINE_MAP", SegmentsToLcm(map(29), 41, 41, "mine"));
+  bus.HandleFor(0);
+  EXPECT_FALSE(updates.map_waiting());
+  clock.Advance(2'000'000);
+  EXPECT_FALSE(updates.HandOnDue());
+  EXPECT_EQ(updates.maps_handed_on(), 4);
+}
+
+TEST(MapUpdatesTest, AWaitingMapTheHandlerRefusesIsDroppedAndTheLastGoodMapStands) {
+  FakeBus bus;
+  ManualClock clock;
+  Received got;
+  MapUpdates updates(bus, "LINE_MAP", "", [&](const std::vector<Segment>& segments, const std::string& what) {
+    if (segments.size() > 2) throw std::runtime_error("too many");
+    Record(&got)(segments, what);
+  });
+  updates.SetRateBound(clock, 1'000'000);
+  bus.InjectMessage("LINE_MAP", SegmentsToLcm({{0, 0, 4, 0}}, 1, 1, "mine"));
+  bus.InjectMessage("LINE_MAP", SegmentsToLcm({{0, 0, 1, 0}, {1, 0, 2, 0}, {2, 0, 3, 0}}, 2, 2, "mine"));
+  bus.HandleFor(0);
+  EXPECT_TRUE(updates.map_waiting());
+  clock.Advance(1'000'000);
+  EXPECT_FALSE(updates.HandOnDue());  // refused (logged), not thrown
+  EXPECT_FALSE(updates.map_waiting());
+  ASSERT_EQ(got.maps.size(), 1u);
+  EXPECT_EQ(updates.maps_handed_on(), 1);
+}
+
 }  // namespace
 }  // namespace minenav

@@ -9,6 +9,7 @@
 // The first scan's pose is taken as given in kScanMap, kFirstScan, kAllPrevious and
 // kSimultaneous: it defines the map frame (3.2, 3.3).
 
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -56,6 +57,12 @@ struct IconicEstimatorOptions {
   double simultaneous_epsilon_translation = 1e-3;
   double simultaneous_epsilon_rotation = 1e-4;
 };
+
+// The live process (and its fuzz target) takes a map from the bus into a new estimator, i.e. a
+// new lookup table (the grassfire over the map's grid, the estimator's dearest step), at most
+// once per this interval of its clock: MapUpdates::SetRateBound, the waiting map taken before a
+// scan. A changed map on every message then costs a table a second, not a table a message.
+inline constexpr int64_t kIconicMapRebuildIntervalUs = 1'000'000;
 
 class OptionScope;
 // Declares every field of IconicEstimatorOptions under `scope`: mode, scan_map_cell_size,

@@ -100,10 +100,12 @@ int Run(NodeRuntime& runtime, const ProcessOptions& p) {
                           estimator = std::move(fresh);
                           MINENAV_LOG(kInfo) << "map from " << what << ": " << estimator->map_size() << " segments";
                         });
+    map_updates->SetRateBound(runtime.clock(), kIconicMapRebuildIntervalUs);
   }
 
   ScanEstimationNode node(runtime, p.estimation, "ipe",
                           [&](const LadarScan& scan, const Pose2& initial, std::string*) -> std::optional<MatchResult> {
+                            if (map_updates) map_updates->HandOnDue();  // a map that waited (rate bound)
                             return estimator->AddScan(scan, initial);  // its core is what POSE_IPE carries
                           });
   node.set_label(ToString(eo.mode));
