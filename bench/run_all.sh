@@ -14,6 +14,9 @@
 # it with apt-get when missing (scripts/common.sh minenav_install_bench_deps); CMake builds that
 # bench only where OMPL is found, so after a first install reconfigure and build it.
 # Exit status: 0 when every bench ran, else the number of benches that failed.
+# Not run here (they start processes on a bus, in a private network namespace): the scripts
+# bench/logger_drop_bench.sh, bench/contour_mapper_live_bench.sh and bench/fleet_load_bench.sh
+# (the whole fleet for 10 minutes: CPU, memory, messages lost, UDP margin; fleet/README.md).
 set -uo pipefail
 
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -27,7 +30,7 @@ while [[ $# -gt 0 ]]; do
     --out) out="$2"; shift 2 ;;
     --carmen) carmen=1; shift ;;
     --only) only="$2"; shift 2 ;;
-    -h|--help) sed -n '2,16p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '2,19p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "run_all.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
   esac
 done
