@@ -2,7 +2,9 @@
 // subscription at the default queue of 30 messages, so a burst (a log replayed as fast
 // as possible) overflows it although the kernel delivered every datagram (README.md,
 // "Does recording lose messages?"). Here the subscription queue is large and each
-// message is written as soon as it is handed over.
+// message is written as soon as it is handed over. With --parts (the fleet's logger,
+// fleet/mission.fleet) it records into OUT.00, OUT.01, ...: a recorder killed and restarted by
+// its supervisor starts the next part, and `log_tool join` puts them together.
 
 #include <csignal>
 #include <cstdio>
@@ -36,6 +38,19 @@ void InstallStopHandlers() {
   sigaction(SIGTERM, &sa, nullptr);
 }
 
+// OUT.NN for the first NN (00 to 99) for which neither OUT.NN nor OUT.NN.partial (a part
+// whose recorder died) exists.
+std::string NextPart(const std::string& out) {
+  std::error_code ec;
+  for (int n = 0; n < 100; ++n) {
+    char suffix[8];
+    std::snprintf(suffix, sizeof suffix, ".%02d", n);
+    const std::string part = out + suffix;
+    if (!std::filesystem::exists(part, ec) && !std::filesystem::exists(part + ".partial", ec)) return part;
+  }
+  throw InputError(out + ": parts .00 to .99 all exist; refusing to overwrite");
+}
+
 }  // namespace
 
 int RunRecordCommand(const std::vector<std::string>& args) {
@@ -45,16 +60,21 @@ int RunRecordCommand(const std::vector<std::string>& args) {
   ConfigSchema schema("log_tool record",
                       "Records the bus into an LCM log like lcm-logger, but with a large subscription queue so\n"
                       "bursts are not dropped. Writes OUT.partial while recording and renames it to OUT at the\n"
-                      "end (SIGINT/SIGTERM or --duration). Refuses to overwrite OUT.");
+                      "end (SIGINT/SIGTERM or --duration). Refuses to overwrite OUT.\n"
+                      "With --parts: records into OUT.00, or the next free part (OUT.01, ...) if that exists, so\n"
+                      "a recorder restarted after a crash keeps what was recorded ('log_tool join OUT OUT.*').");
+  bool parts = false;
   schema.AddString("out", &out, "log to write (required)");
   schema.AddString("channels", &channels, "regex of the channels to record (LCM syntax, whole name)");
   schema.AddString("lcm_url", &url, "LCM URL; empty = $LCM_DEFAULT_URL, else the design default");
   schema.AddDouble("duration", &duration, "s", "stop after this long; 0 = until SIGINT/SIGTERM", 0.0);
   schema.AddDouble("flush_interval", &flush_interval, "s", "flush the log to disk this often", 0.0, 60.0);
+  schema.AddBool("parts", &parts, "record into the next free part OUT.NN instead of OUT");
   schema.AddInt("queue_capacity", &queue_capacity, "messages the LCM subscription may hold", 1, 100000000);
   if (schema.Parse(args) == ParseOutcome::kExit) return 0;
   RequireOutputPath(out, "--out");
   std::error_code ec;
+  if (parts) out = NextPart(out);
   if (std::filesystem::exists(out, ec)) throw InputError(out + ": exists; refusing to overwrite");
   try {
     std::regex check(channels);

@@ -85,6 +85,28 @@ read -r count missing first last <<<"$(channel_stats "$dir/engine.lcm" ODOMETRY)
 [ "$(channel_stats "$dir/engine.lcm" SIM_WORLD)" = "none" ] || fail "engine log_tool: unselected channel SIM_WORLD logged"
 echo "   $count ODOMETRY messages, none missing"
 
+echo "== log_tool record --parts: a recorder killed and restarted starts the next part; join keeps both"
+"$log_tool" record --parts true --out "$dir/fleet.lcm" --channels SIM_TRUTH 2>/dev/null &
+rec_pid=$!
+sleep 0.7
+"$vehicle_sim" --generate mine --run-for 1 --heartbeat-period 0 2>/dev/null
+sleep 0.3  # past its flush interval (0.1 s)
+kill -9 "$rec_pid"; wait "$rec_pid" 2>/dev/null || true
+[ -f "$dir/fleet.lcm.00.partial" ] || fail "--parts: no fleet.lcm.00.partial after kill -9: $(ls "$dir")"
+"$log_tool" record --parts true --out "$dir/fleet.lcm" --channels SIM_TRUTH --duration 2.5 2>/dev/null >"$dir/part.txt" &
+rec_pid=$!
+sleep 0.7
+"$vehicle_sim" --generate mine --run-for 1 --heartbeat-period 0 2>/dev/null
+wait "$rec_pid"
+[ "$(cat "$dir/part.txt")" = "$dir/fleet.lcm.01" ] || fail "--parts: the restart wrote '$(cat "$dir/part.txt")', not fleet.lcm.01"
+"$log_tool" join "$dir/fleet.lcm" "$dir"/fleet.lcm.[0-9][0-9]* 2>/dev/null || fail "join of the parts failed"
+read -r count_a missing_a first_a last_a <<<"$(channel_stats "$dir/fleet.lcm.00.partial" SIM_TRUTH)"
+read -r count_b missing_b first_b last_b <<<"$(channel_stats "$dir/fleet.lcm.01" SIM_TRUTH)"
+read -r count missing first last <<<"$(channel_stats "$dir/fleet.lcm" SIM_TRUTH)"
+[ "$count_a" -ge 10 ] && [ "$count_b" -ge 10 ] || fail "--parts: $count_a and $count_b SIM_TRUTH in the parts (1 s at 20 Hz each)"
+[ "$count" -eq $((count_a + count_b)) ] || fail "join: $count events, the parts had $count_a + $count_b"
+echo "   part 00 (killed): $count_a SIM_TRUTH, part 01: $count_b; joined: $count"
+
 echo "== bad flags"
 for bad in "--channels (" "--engine tape" "--engine log_tool --log-tool /nonexistent" "--split-mb lots" "--duration soon" "--recv-buf big" "--frobnicate" "--lcm-url http://x"; do
   status=0

@@ -165,9 +165,10 @@ supervise="$out/.supervise.sh"
   if [ -n "$attack" ]; then
     # On the vehicle's network (the one host, or the vehicle of two): it listens from the start.
     echo 'if [ "$groups" = all ] || [ "$groups" = vehicle ]; then'
-    printf '  (%q --capture %q --attack %q --rate 5 > %q 2> %q && echo %q) &\n' "$bin/command_attacker" \
-      "${attack%@*}" "${attack#*@}" "$out/command_attacker.txt" "$out/command_attacker.log" \
-      "== attack: ${attack#*@} s of replayed, forged, tampered and unsigned commands ended (command_attacker.txt)"
+    # A job of this script itself (not inside a subshell), so the `kill $(jobs -p)` below
+    # stops it when the fleet ends first.
+    printf '  %q --capture %q --attack %q --rate 5 > %q 2> %q &\n' "$bin/command_attacker" \
+      "${attack%@*}" "${attack#*@}" "$out/command_attacker.txt" "$out/command_attacker.log"
     echo 'fi'
   fi
   echo 'if [ -n "$ended" ] && [ "$groups" = vehicle ]; then'
@@ -201,9 +202,10 @@ case $status in
   *) echo "== the fleet ended with exit code $status (see $out/fleet.log and $out/coordinator.log)" ;;
 esac
 
-# The logger's parts (lcm-logger --increment: a logger restarted after a crash writes the next
-# one) as one log; a part torn by its writer's death keeps its whole events (log_tool join).
-parts=("$out"/mission.lcm.[0-9][0-9])
+# The logger's parts (lcm-logger -i, or log_tool record --parts, whose killed part is left as
+# .NN.partial: a logger restarted after a crash writes the next one) as one log, in order; a part torn by its
+# writer's death keeps its whole events (log_tool join).
+parts=("$out"/mission.lcm.[0-9][0-9]*)
 if [ -e "${parts[0]}" ]; then
   "$bin/log_tool" join "$out/mission.lcm" "${parts[@]}" && rm -f "${parts[@]}"
 fi

@@ -2,10 +2,10 @@
 # The whole mission in CI (issue 15), shortened: the README's main job (scripts/run_demo.sh)
 # on the one-pillar section with a 0.5 m advance, split across two hosts (vehicle and base
 # station, ttl=1) and with a fault: the path tracker is killed with SIGKILL while the
-# exploration drives; and with an attacker on the vehicle's network (run_demo.sh --attack,
-# tests/bus/command_attacker.cc) that, from 60 s in and for 360 s, publishes replayed, forged,
-# tampered and unsigned copies of every signed command channel. Then judged from what the run
-# leaves, against the true world:
+# exploration drives. With run_demo.sh --attack (not in CI yet: see common/node/README.md,
+# "Security") an attacker on the vehicle's network publishes replayed, forged, tampered and
+# unsigned copies of every signed command channel, and the checks below include it. Then
+# judged from what the run leaves, against the true world:
 #
 #   tests/bus/mission_test.sh BIN_DIR PORT [KILL...]
 #
@@ -19,7 +19,7 @@
 #   - every cut the plan asked for (box and slab) as deep as requested within the report's
 #     tolerance (5 cm), in the true world and in the live contour map: none flagged;
 #   - the log replays: the report read every event of it without a bad message;
-#   - the attack was refused whole: on every channel it attacked, a process that listens there
+#   - with an attack, it was refused whole: on every channel it attacked, a process that listens there
 #     refused by authentication exactly as many messages as the attacker sent (so none reached
 #     a handler: the vehicle never moved on them), and no process refused more on any channel;
 #     the report, reading the log with the fleet's key, used none of them.
@@ -34,9 +34,12 @@ work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
 fail() {
   echo "mission_test: FAILED: $*" >&2
-  for f in coordinator path_tracker path_planner cutter; do
+  for f in coordinator task_planner path_tracker path_planner cutter; do
     [ -f "$work/out/$f.log" ] && { echo "== tail of $f.log" >&2; tail -n 15 "$work/out/$f.log" >&2; }
   done
+  # MINENAV_KEEP_MISSION_OUT=DIR: what the failed run left (logs, log, report) is kept there.
+  [ -n "${MINENAV_KEEP_MISSION_OUT:-}" ] && cp -r "$work/out" "$MINENAV_KEEP_MISSION_OUT" &&
+    echo "mission_test: the run's outputs are kept in $MINENAV_KEEP_MISSION_OUT" >&2
   exit 1
 }
 
@@ -44,7 +47,6 @@ kill_args=()
 for k in "${kills[@]}"; do kill_args+=(--kill "$k"); done
 status=0
 "$root/scripts/run_demo.sh" --bin "$bin" --small --fast 6 --port "$port" --two-hosts "${kill_args[@]}" \
-  --attack 60@360 \
   --out "$work/out" > "$work/run.txt" 2>&1 || status=$?
 grep -E "^\[(vehicle|base)\] \[ *[0-9]+:[0-9]+\]|== " "$work/run.txt" | tail -n 40
 [ $status -eq 0 ] || { tail -n 30 "$work/run.txt"; fail "run_demo.sh exited $status"; }
@@ -88,7 +90,7 @@ sys.exit(1 if bad else 0)
 PY
 # The attack: what command_attacker sent per channel against what each process refused there
 # (the last "stopping: ..." line of its log, common/node/node_runtime.h ExitSummary).
-python3 - "$work/out" <<'PY' || fail "the attack was not refused whole (above)"
+[ ! -e "$work/out/command_attacker.txt" ] || python3 - "$work/out" <<'PY' || fail "the attack was not refused whole (above)"
 import glob, os, re, sys
 out = sys.argv[1]
 sent = {}
