@@ -250,7 +250,7 @@ TEST_F(ContourMapperLiveStopTest, SigtermWithABacklogExitsAtOnceAndTheCheckpoint
   const std::string log = ReadTextFile(out);
 
   // One line says how many scans were left; each of them was answered on POSE.
-  const auto stopping = LinesContaining(log, "stopping: ");
+  const auto stopping = LinesContaining(log, "queued scans not mapped");
   ASSERT_EQ(stopping.size(), 1u) << log;
   const size_t left = listener.Count("not mapped: the mapper stopped");
   EXPECT_GT(left, 0u) << "no backlog when signalled";
