@@ -16,7 +16,8 @@
 # Exit status: 0 when every bench ran, else the number of benches that failed.
 # Not run here (they start processes on a bus, in a private network namespace): the scripts
 # bench/logger_drop_bench.sh, bench/contour_mapper_live_bench.sh and bench/fleet_load_bench.sh
-# (the whole fleet for 10 minutes: CPU, memory, messages lost, UDP margin; fleet/README.md).
+# (the whole fleet for 10 minutes: CPU, memory, messages lost, UDP margin; fleet/README.md),
+# nor bench/mapper_insert_cost.sh (needs a recorded mission: mapper/README.md, "Insert cost").
 set -uo pipefail
 
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"

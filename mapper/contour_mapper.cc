@@ -64,9 +64,38 @@ void DeclareOptions(OptionScope s, ContourMapperOptions& o) {
               "after an insert only vertices within the scan's bounding box grown by this are refitted, so the rest "
               "of the map keeps its shape and an insert stays local; < 0 = whole contours; 1 m",
               -1.0, 1000.0);
+  s.AddDouble("local_fit_radius", &o.local_fit_radius, "m",
+              "and only vertices within this distance of the new scan's sensor (along x and y) are refitted: a far "
+              "wall the scan sees sparsely keeps the shape the scans near it gave it; 0 = the scan's box alone",
+              0.0, 1000.0);
+  s.AddInt("fit_scans", &o.fit_scans,
+           "an insert refits the contours with the new scan and the scans taken nearest to it, this many in all; "
+           "0 = every mapped scan (the thesis: an insert's cost grows with the map); 20 keeps a live mapper's "
+           "inserts flat (mapper/README.md, \"Insert cost\") [scans]",
+           0, 1000000);
   s.AddBool("refine_after_each_scan", &o.refine_after_each_scan,
             "concurrent refinement after every accepted scan (4.7: most accurate, slow); off: refine "
             "periodically or at the end");
+}
+
+std::vector<MappedScan> NearestScans(const std::vector<MappedScan>& scans, int count) {
+  std::vector<MappedScan> out;
+  if (scans.empty() || count <= 0) return out;
+  const Eigen::Vector2d here = scans.back().pose * scans.back().scan.sensor_position;
+  std::vector<std::pair<double, size_t>> by_distance;
+  by_distance.reserve(scans.size());
+  for (size_t k = 0; k < scans.size(); ++k)
+    by_distance.emplace_back((scans[k].pose * scans[k].scan.sensor_position - here).squaredNorm(), k);
+  const size_t n = std::min(by_distance.size(), static_cast<size_t>(count));
+  // Ties (a survey's scans taken at one station) keep the later scan first.
+  std::partial_sort(by_distance.begin(), by_distance.begin() + static_cast<std::ptrdiff_t>(n), by_distance.end(),
+                    [](const auto& a, const auto& b) { return a.first < b.first || (a.first == b.first && a.second > b.second); });
+  std::vector<size_t> chosen;
+  for (size_t k = 0; k < n; ++k) chosen.push_back(by_distance[k].second);
+  std::sort(chosen.begin(), chosen.end());  // in the order they were mapped
+  out.reserve(n);
+  for (const size_t k : chosen) out.push_back(scans[k]);
+  return out;
 }
 
 ContourMapper::ContourMapper(ContourMapperOptions options)
@@ -148,7 +177,18 @@ InsertResult ContourMapper::InsertPreprocessed(PreprocessedScan scan, const Pose
     }
   region.lo -= Eigen::Vector2d::Constant(options_.local_fit_margin);
   region.hi += Eigen::Vector2d::Constant(options_.local_fit_margin);
-  out.fitting = FitContours(ids, scans_, map_, options_.fitting, options_.local_fit_margin >= 0.0 ? &region : nullptr);
+  if (options_.local_fit_radius > 0.0) {
+    const Eigen::Vector2d sensor = out.pose * scans_.back().scan.sensor_position;
+    region.lo = region.lo.cwiseMax(sensor - Eigen::Vector2d::Constant(options_.local_fit_radius));
+    region.hi = region.hi.cwiseMin(sensor + Eigen::Vector2d::Constant(options_.local_fit_radius));
+  }
+  const FitRegion* fit_region = options_.local_fit_margin >= 0.0 ? &region : nullptr;
+  if (options_.fit_scans > 0 && static_cast<int>(scans_.size()) > options_.fit_scans) {
+    const std::vector<MappedScan> nearest = NearestScans(scans_, options_.fit_scans);
+    out.fitting = FitContours(ids, nearest, map_, options_.fitting, fit_region);
+  } else {
+    out.fitting = FitContours(ids, scans_, map_, options_.fitting, fit_region);
+  }
   if (options_.refine_after_each_scan) {
     Refine();
     out.pose = scans_.back().pose;

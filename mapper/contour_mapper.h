@@ -53,12 +53,24 @@ struct ContourMapperOptions {
   // m; after an insert only contour vertices within the new scan's bounding box grown by
   // this margin are refitted (the rest of the map keeps its shape). < 0: refit whole contours.
   double local_fit_margin = 1.0;
+  // Scans an insert's refit uses: the new one and the ones taken nearest to it (sensor
+  // positions), at most this many; 0 = every mapped scan (the thesis). All scans make an
+  // insert's cost grow with the map (a 360-degree scan's box covers most of a section, so
+  // the local region does not bound it); a bound keeps a live mapper's inserts flat.
+  int fit_scans = 0;
+  // m; and only vertices within this distance of the new scan's sensor (along x and y): a far
+  // wall the scan sees sparsely keeps the shape the scans near it gave it. 0 = the box alone.
+  double local_fit_radius = 0.0;
   // Run concurrent refinement after every accepted scan (slow; thesis 4.7 suggests it for
   // maximum accuracy). Otherwise call Refine() when wanted.
   bool refine_after_each_scan = false;
 };
 
 std::string ValidateOptions(const ContourMapperOptions& options);
+
+// The last of `scans` and the ones whose sensor stood nearest to it, `count` in all (all of
+// them when there are fewer), in their original order: the data an insert's refit uses.
+std::vector<MappedScan> NearestScans(const std::vector<MappedScan>& scans, int count);
 // Declares every field of `o` under `scope` (unit, default, range, why): config keys and flags.
 void DeclareOptions(OptionScope scope, ContourMapperOptions& o);
 

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 
 #include "evaluation/map_evaluation.h"
@@ -28,16 +29,21 @@ const std::vector<Pose2> kStations = {{3, 9, 0.3}, {9, 9.5, -0.5}, {17, 9, 2.0},
 class ContourMapperTest : public ::testing::Test {
  protected:
   // Builds the small room from noisy scans with initial poses off by σ 0.33 m / 3.33°.
-  void BuildRoom() {
+  void BuildRoom() { BuildRoomFor(mapper_); }
+
+ public:
+  static void BuildRoomFor(ContourMapper& mapper) {
     std::mt19937 rng(5);
     std::normal_distribution<double> xy(0, 0.33), th(0, DegToRad(3.33));
     for (size_t k = 0; k < kStations.size(); ++k) {
       const Pose2 initial = k == 0 ? kStations[0]
                                    : Pose2(kStations[k].x + xy(rng), kStations[k].y + xy(rng), kStations[k].theta + th(rng));
-      const InsertResult r = mapper_.InsertScan(NoisyScan(SmallRoomWorld(), kStations[k], static_cast<unsigned>(k + 1)), initial);
+      const InsertResult r = mapper.InsertScan(NoisyScan(SmallRoomWorld(), kStations[k], static_cast<unsigned>(k + 1)), initial);
       ASSERT_TRUE(r.accepted) << "scan " << k << ": " << r.reason;
     }
   }
+
+ protected:
   ContourMapper mapper_;
 };
 
@@ -69,6 +75,49 @@ TEST_F(ContourMapperTest, BuildsAnAccurateMapOfASmallRoom) {
     truth_points.insert(truth_points.end(), pts.begin(), pts.end());
   }
   EXPECT_GT(Coverage(truth_points, mapper_.map(), 0.1), 0.95);
+}
+
+// NearestScans against a brute-force reference: the last scan, then the others by the
+// distance of their sensor, ties going to the later one; returned in mapping order.
+TEST(NearestScansTest, TheLastScanAndTheNearestInMappingOrder) {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-20, 20);
+  std::vector<MappedScan> scans(40);
+  for (size_t k = 0; k < scans.size(); ++k) {
+    scans[k].pose = Pose2(u(rng), u(rng), u(rng) / 10);
+    scans[k].scan.sensor_position = Eigen::Vector2d(0.5, -0.2);
+    scans[k].scan.utime = static_cast<int64_t>(k);  // identifies the scan
+  }
+  scans[7].pose = scans.back().pose;  // a tie at distance 0: both kept, the last first
+  for (const int count : {1, 5, 12, 40, 100}) {
+    const std::vector<MappedScan> got = NearestScans(scans, count);
+    const Eigen::Vector2d here = scans.back().pose * scans.back().scan.sensor_position;
+    std::vector<std::pair<double, int64_t>> all;
+    for (const MappedScan& s : scans) all.emplace_back((s.pose * s.scan.sensor_position - here).norm(), s.scan.utime);
+    std::sort(all.begin(), all.end(), [](const auto& a, const auto& b) { return a.first < b.first || (a.first == b.first && a.second > b.second); });
+    std::vector<int64_t> expected;
+    for (int k = 0; k < std::min<int>(count, 40); ++k) expected.push_back(all[static_cast<size_t>(k)].second);
+    std::sort(expected.begin(), expected.end());
+    std::vector<int64_t> ids;
+    for (const MappedScan& s : got) ids.push_back(s.scan.utime);
+    EXPECT_EQ(ids, expected) << "count " << count;
+    EXPECT_EQ(ids.back(), 39) << "the new scan is always in";
+  }
+  EXPECT_TRUE(NearestScans({}, 5).empty());
+}
+
+// The live mapper's bounded insert (fit_scans, local_fit_radius: mapper/README.md "Insert
+// cost") must map the small room to the same targets as the thesis's all-scan refit.
+TEST(ContourMapperBoundedFitTest, NearestScansAndARadiusMapTheRoomAsAccurately) {
+  ContourMapperOptions o;
+  o.fit_scans = 3;
+  o.local_fit_radius = 8.0;
+  ContourMapper mapper(o);
+  ASSERT_NO_FATAL_FAILURE(ContourMapperTest::BuildRoomFor(mapper));
+  double worst = 0;
+  for (size_t k = 0; k < mapper.scans().size(); ++k) worst = std::max(worst, TranslationDistance(mapper.scans()[k].pose, kStations[k]));
+  EXPECT_LT(worst, 0.02);
+  EXPECT_LT(ContourDeviation(mapper.map(), SmallRoomWorld()).mean, 0.02);
 }
 
 TEST_F(ContourMapperTest, RefusesScansThatWouldCorruptTheMap) {

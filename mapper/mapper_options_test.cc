@@ -91,8 +91,8 @@ TEST(MapperOptionsTest, FieldsAreAllDeclared) {
   EXPECT_EQ(FieldCount<PoseEstimationOptions>(), 12u);
   EXPECT_EQ(FieldCount<LoopClosureOptions>(), 24u);
   EXPECT_EQ(FieldCount<ConcurrentRefinementOptions>(), 9u);
-  EXPECT_EQ(FieldCount<ContourMapperOptions>(), 14u);
-  EXPECT_EQ(KeyCount<MapperRunOptions>(), 113u);
+  EXPECT_EQ(FieldCount<ContourMapperOptions>(), 16u);
+  EXPECT_EQ(KeyCount<MapperRunOptions>(), 115u);
 }
 
 // A value that `key` accepts and that differs from `value` (its printed default).

@@ -211,8 +211,10 @@ if [ -e "${parts[0]}" ]; then
 fi
 [ -s "$out/mission.lcm" ] || { echo "run_demo.sh: no log was recorded ($out/mission.lcm)" >&2; exit 3; }
 echo "== the contour map rebuilt from the log (batch mapper, same policy)"
+# The live mapper's bounded refit too (fleet/mission.fleet): with every scan a long mission's
+# rebuild grows quadratically (120 inserts: 7 minutes); the final refinement uses every scan.
 "$bin/contour_mapper" --log "$out/mission.lcm" --insert-min-translation 1.0 --insert-min-rotation 0.3 \
-  --final-refinement-rounds 2 --map-out "$out/contour_map_batch.json" --svg-out "$out/contour_map_batch.svg" \
+  --mapper.fit-scans 20 --mapper.local-fit-radius 15 --final-refinement-rounds 2 --map-out "$out/contour_map_batch.json" --svg-out "$out/contour_map_batch.svg" \
   2> "$out/contour_mapper_batch.log" || echo "   (the batch mapper failed: $out/contour_mapper_batch.log)"
 echo "== the report"
 report_args=(--log "$out/mission.lcm" --key-file "$out/fleet.key" --world "$out/mine.json" --report-out "$out/report.md"
