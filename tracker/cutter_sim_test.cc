@@ -37,11 +37,12 @@ std::vector<Segment> EntryWorld() {
 }
 
 // The mapper as the cutter's fleet runs it (tracker/cutter_bus_test.cc: contour_mapper's
-// default policy, every scan inserted, so the changing-world editing sees each new face), on
+// default policy, every scan inserted, so the changing-world editing sees each new face; an
+// insert refits with the 20 nearest scans within 15 m, as fleet/mission.fleet has it), on
 // 720-point scans with 2 cm of range noise, each estimate out 0.5 s after its scan: a fixed
-// computation time, so that the test does not depend on the machine (measured in release:
-// 0.05-0.6 s per insert here, growing with the scans inserted at the face; several times
-// that under the sanitizers, when the cutter's 2 s limit on the pose's age would stop the cut).
+// computation time, so that the test does not depend on the machine (several times the
+// release build's under the sanitizers, when the cutter's 2 s limit on the pose's age would
+// stop the cut).
 testing::MapperPoseSourceOptions CutterMapper() {
   testing::MapperPoseSourceOptions o;
   o.ladar.num_points = 720;
@@ -51,6 +52,8 @@ testing::MapperPoseSourceOptions CutterMapper() {
   o.ladar.range_resolution = 0.0;
   o.ladar.mixed_pixel_probability = 0.0;
   o.session = mapper::MappingSessionOptions{};
+  o.session.mapper.fit_scans = 20;
+  o.session.mapper.local_fit_radius = 15.0;
   o.compute_time = 0.5;
   o.seed = 3;
   return o;

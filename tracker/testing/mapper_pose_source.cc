@@ -11,6 +11,10 @@ mapper::MappingSessionOptions LiveMappingPolicy() {
   mapper::MappingSessionOptions o;
   o.insert_min_translation = 1.0;
   o.insert_min_rotation = 0.3;
+  // An insert refits with the 20 scans nearest to it, vertices within 15 m of the sensor
+  // (fleet/mission.fleet: a live mapper whose insert cost does not grow with the map).
+  o.mapper.fit_scans = 20;
+  o.mapper.local_fit_radius = 15.0;
   return o;
 }
 

@@ -36,8 +36,8 @@
 
 namespace minenav::testing {
 
-// The live fleet's mapping policy (scripts/run_demo.sh): insert a scan every metre or
-// 0.3 rad, track the others.
+// The live fleet's mapping policy (fleet/mission.fleet): insert a scan every metre or
+// 0.3 rad, track the others; an insert refits with the 20 nearest scans within 15 m.
 mapper::MappingSessionOptions LiveMappingPolicy();
 
 struct MapperPoseSourceOptions {
