@@ -3,7 +3,7 @@
 #
 #   scripts/run_demo.sh [--seed S] [--fast F] [--depth D] [--out DIR] [--small] [--max-stations N]
 #                       [--two-hosts] [--kill NAME@SECONDS]... [--attack S@LENGTH] [--port P]
-#                       [--bin DIR]
+#                       [--bin DIR] [--no-batch-map]
 #
 # Generates a room-and-pillar section (thesis 5.2.1; 7 m entries: the 3.3 x 10 m miner's turn
 # into a crosscut needs more than 6 m, planner/README.md) and runs the mission's fleet
@@ -49,10 +49,12 @@
 # ... refused by authentication: CHANNEL COUNT ...", common/node/README.md "Security"); the
 # report reads the log with the fleet's key and uses none of them.
 # --port: the bus's UDP port (default 7667). --bin DIR: use the programs in DIR as they are
-# (built elsewhere, e.g. by the tests) instead of building build/release.
+# (built elsewhere, e.g. by the tests) instead of building build/release. --no-batch-map: no
+# contour_map_batch.json (the report judges the live map; the rebuild from the log takes
+# minutes: tests/bus/mission_test.sh leaves it out).
 source "$(dirname "$0")/common.sh"
 
-seed=7 fast=6 depth=1.0 out="" small=0 max_stations=30 two_hosts=0 port=7667 bin="" kills=() attack=""
+seed=7 fast=6 depth=1.0 out="" small=0 max_stations=30 two_hosts=0 port=7667 bin="" kills=() attack="" batch_map=1
 while [ $# -gt 0 ]; do
   case "$1" in
     --seed) seed="$2"; shift 2 ;;
@@ -66,6 +68,7 @@ while [ $# -gt 0 ]; do
     --attack) attack="$2"; shift 2 ;;
     --port) port="$2"; shift 2 ;;
     --bin) bin="$2"; shift 2 ;;
+    --no-batch-map) batch_map=0; shift ;;
     -h|--help) awk 'NR > 1 && /^#/ { print; next } NR > 1 { exit }' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "run_demo.sh: unknown option '$1' (see --help)" >&2; exit 2 ;;
   esac
@@ -210,12 +213,14 @@ if [ -e "${parts[0]}" ]; then
   "$bin/log_tool" join "$out/mission.lcm" "${parts[@]}" && rm -f "${parts[@]}"
 fi
 [ -s "$out/mission.lcm" ] || { echo "run_demo.sh: no log was recorded ($out/mission.lcm)" >&2; exit 3; }
-echo "== the contour map rebuilt from the log (batch mapper, same policy)"
-# The live mapper's bounded refit too (fleet/mission.fleet): with every scan a long mission's
-# rebuild grows quadratically (120 inserts: 7 minutes); the final refinement uses every scan.
-"$bin/contour_mapper" --log "$out/mission.lcm" --insert-min-translation 1.0 --insert-min-rotation 0.3 \
-  --mapper.fit-scans 20 --mapper.local-fit-radius 15 --final-refinement-rounds 2 --map-out "$out/contour_map_batch.json" --svg-out "$out/contour_map_batch.svg" \
-  2> "$out/contour_mapper_batch.log" || echo "   (the batch mapper failed: $out/contour_mapper_batch.log)"
+if [ $batch_map -eq 1 ]; then
+  echo "== the contour map rebuilt from the log (batch mapper, same policy)"
+  # The live mapper's bounded refit too (fleet/mission.fleet): with every scan a long mission's
+  # rebuild grows quadratically (120 inserts: 7 minutes); the final refinement uses every scan.
+  "$bin/contour_mapper" --log "$out/mission.lcm" --insert-min-translation 1.0 --insert-min-rotation 0.3 \
+    --mapper.fit-scans 20 --mapper.local-fit-radius 15 --final-refinement-rounds 2 --map-out "$out/contour_map_batch.json" --svg-out "$out/contour_map_batch.svg" \
+    2> "$out/contour_mapper_batch.log" || echo "   (the batch mapper failed: $out/contour_mapper_batch.log)"
+fi
 echo "== the report"
 report_args=(--log "$out/mission.lcm" --key-file "$out/fleet.key" --world "$out/mine.json" --report-out "$out/report.md"
              --json-out "$out/report.json" --svg-out "$out/mission.svg" --png-out "$out/mission.png"

@@ -47,7 +47,7 @@ kill_args=()
 for k in "${kills[@]}"; do kill_args+=(--kill "$k"); done
 status=0
 "$root/scripts/run_demo.sh" --bin "$bin" --small --fast 6 --port "$port" --two-hosts "${kill_args[@]}" \
-  --out "$work/out" > "$work/run.txt" 2>&1 || status=$?
+  --no-batch-map --out "$work/out" > "$work/run.txt" 2>&1 || status=$?
 grep -E "^\[(vehicle|base)\] \[ *[0-9]+:[0-9]+\]|== " "$work/run.txt" | tail -n 40
 [ $status -eq 0 ] || { tail -n 30 "$work/run.txt"; fail "run_demo.sh exited $status"; }
 report="$work/out/report.json"
