@@ -48,7 +48,7 @@ std::vector<char*> Pointers(std::vector<std::string>& strings) {
 }
 
 // Between fork and exec only async-signal-safe calls: everything is prepared before.
-[[noreturn]] void ExecChild(pid_t parent, int null_fd, int log_fd, bool stdout_to_log, const char* path,
+[[noreturn]] void ExecChild(pid_t parent, int null_fd, int log_fd, bool stdout_to_log, int max_fd, const char* path,
                             char* const* argv, char* const* envp) {
   ::setpgid(0, 0);
   ::prctl(PR_SET_PDEATHSIG, SIGTERM);
@@ -59,6 +59,10 @@ std::vector<char*> Pointers(std::vector<std::string>& strings) {
   ::dup2(null_fd, STDIN_FILENO);
   ::dup2(log_fd, STDERR_FILENO);
   if (stdout_to_log) ::dup2(log_fd, STDOUT_FILENO);
+  // Nothing else of the supervisor's: liblcm opens its sockets without close-on-exec, and every
+  // child would keep the supervisor's bus socket (and its multicast membership) open for life.
+  if (::close_range(3, ~0U, 0) != 0)
+    for (int fd = 3; fd < max_fd; ++fd) ::close(fd);  // a kernel before 5.9
   ::execve(path, argv, envp);
   static const char kFailed[] = "fleet: exec failed: ";
   const char* why = std::strerror(errno);
@@ -96,8 +100,11 @@ pid_t LaunchProcess(const LaunchRequest& request) {
   const std::vector<char*> argv = Pointers(argv_strings);
   const std::vector<char*> envp = Pointers(env_strings);
   const pid_t parent = ::getpid();
+  const long open_max = ::sysconf(_SC_OPEN_MAX);
+  const int max_fd = open_max > 0 && open_max < 65536 ? static_cast<int>(open_max) : 65536;
   const pid_t pid = ::fork();
-  if (pid == 0) ExecChild(parent, null_fd, log_fd, request.stdout_to_log, argv[0], argv.data(), envp.data());
+  if (pid == 0)
+    ExecChild(parent, null_fd, log_fd, request.stdout_to_log, max_fd, argv[0], argv.data(), envp.data());
   const int fork_errno = errno;
   ::close(log_fd);
   if (null_fd >= 0) ::close(null_fd);

@@ -266,6 +266,35 @@ heartbeat = none
   EXPECT_TRUE(OutputHas("stopped stubborn (killed by SIGKILL)")) << output();
 }
 
+// The supervisor's own descriptors (its LCM socket above all: liblcm opens it without
+// close-on-exec) are not a child's: it has its standard input, output and error only.
+TEST_F(FleetRun, AProcessHasItsStandardStreamsAndNoDescriptorOfTheSupervisor) {
+  const std::string file = WriteFile(dir_, "sleeper.fleet", R"(
+[process sleeper]
+command = sleep 1000
+group = g
+heartbeat = none
+)");
+  auto fleet = StartFleet(file, {});
+  ASSERT_TRUE(WaitFor(10, [&] { return StartedPids(output(), "sleeper").size() == 1; })) << output();
+  const std::string fd_dir = "/proc/" + std::to_string(StartedPids(output(), "sleeper")[0]) + "/fd";
+  // Until the exec has happened (the forked supervisor still has them all before it).
+  ASSERT_TRUE(WaitFor(5, [&] { return ReadTextFile(fd_dir.substr(0, fd_dir.size() - 3) + "/comm") == "sleep\n"; }));
+  std::map<int, std::string> fds;  // descriptor -> what it is
+  for (const auto& entry : fs::directory_iterator(fd_dir)) {
+    std::error_code error;
+    fds[std::stoi(entry.path().filename().string())] = fs::read_symlink(entry.path(), error).string();
+  }
+  fleet->Signal(SIGINT);
+  EXPECT_EQ(fleet->Wait(10), 0) << output();
+  std::string listing;
+  for (const auto& [fd, target] : fds) listing += std::to_string(fd) + " -> " + target + "\n";
+  ASSERT_EQ(fds.size(), 3u) << listing;
+  EXPECT_EQ(fds[0], "/dev/null") << listing;
+  EXPECT_EQ(fds[2], dir_ / "out/sleeper.log") << listing;
+  EXPECT_EQ(fds.count(1), 1u) << listing;
+}
+
 TEST_F(FleetRun, AScriptThatExitsAtOnceIsGivenUpAsACrashLoop) {
   const std::string file = WriteFile(dir_, "crash.fleet", R"(
 [process crash]
