@@ -459,6 +459,7 @@ SurveyDecision PlanNextStation(const TaskMap& map_in, const Footprint& footprint
       // reaches there) is cheap and does not count towards max_plans.
       if (p.expansions > 0) ++d.plans;
       d.expansions += p.expansions;
+      c.expansions += p.expansions;
       if (p.status == SearchStatus::kFound) {
         reached = true;
         c.pose = goal;

@@ -126,6 +126,7 @@ struct StationCandidate {
   double bound = 0.0;     // m: straight-line distance - area_value x new area
   bool feasible = false;  // passed the prediction (overlap, new area) and the footprint fits
   bool planned = false;
+  int64_t expansions = 0;  // the path planner's, over every heading tried
   double path_cost = 0.0;  // m, when reachable
   double cost = 0.0;       // m: path_cost - area_value x new area, when reachable
   std::string rejected;    // why it is no station ("" while it may be)

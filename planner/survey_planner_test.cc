@@ -101,6 +101,16 @@ TEST(SurveyPlanner, OnAPartialMapTheStationIsReachableKnownFreeBeforeAFrontierAn
   const SurveyDecision m = PlanNextStation(map, Footprint::Rectangle(3.3, 10.0), request, options, {});
   ExpectGoodStation(e, map, Footprint::Rectangle(3.3, 10.0), request, m, options);
   std::printf("miner: %s\n", m.plan.reason.c_str());
+  // Each planned candidate's expansions (the task planner's debug lines) add up to the decision's.
+  for (const SurveyDecision* decision : {&d, &m}) {
+    int64_t planned = 0;
+    for (const StationCandidate& c : decision->candidates) {
+      EXPECT_TRUE(c.planned || c.expansions == 0);
+      planned += c.expansions;
+    }
+    EXPECT_EQ(planned, decision->expansions);
+    EXPECT_GT(planned, 0);
+  }
 }
 
 // The miner stopped short turned towards the entry's rib, its front corner 4 cm from it (the

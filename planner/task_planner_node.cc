@@ -270,7 +270,13 @@ TaskPlannerNode::Answer TaskPlannerNode::Plan(Job& job) {
     s.vehicle = r.pose;
     s.clearance = clearance;
     s.visited = job.visited;
-    answer.plan = PlanNextStation(cache.map, footprint_, s, options_.survey, options_.planner, limits).plan;
+    const SurveyDecision d = PlanNextStation(cache.map, footprint_, s, options_.survey, options_.planner, limits);
+    for (const StationCandidate& c : d.candidates)
+      if (c.planned)
+        MINENAV_LOG(kDebug) << "request " << r.request_id << ": candidate " << PoseText(c.pose) << " (bound "
+                            << FixedNumber(c.bound, 1) << " m, " << c.expansions << " expansions): "
+                            << (c.rejected.empty() ? "reachable, cost " + FixedNumber(c.cost, 1) + " m" : c.rejected);
+    answer.plan = d.plan;
   }
   if (deadline_passed && answer.plan.status == PlanStatus::kFailed)
     answer.plan.reason =
