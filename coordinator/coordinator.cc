@@ -102,7 +102,7 @@ void DeclareOptions(OptionScope s, CoordinatorOptions& o) {
               "(comma-separated; name or name/instance; empty = none)");
   s.AddBool("explore", &o.explore, "survey the unknown section first (scan stations from the task planner)");
   s.AddInt("max_stations", &o.max_stations, "scan stations at most", 1, 10000);
-  s.AddInt("max_failed_stations", &o.max_failed_stations, "consecutive stations not reached before the exploration fails",
+  s.AddInt("max_failed_stations", &o.max_failed_stations, "consecutive stations not reached (or not decided: the task planner answered FAILED) before the exploration fails",
            1, 100);
   s.AddDouble("station_dwell", &o.station_dwell, "s", "time standing at each station for the ladar's scans", 0.0, 600.0);
   s.AddBool("advance", &o.advance, "then advance an entry: box cut, slab cut, back out");
@@ -593,7 +593,20 @@ void Coordinator::TickPlanRequest(Running& r, TaskRequestKind kind, int64_t now)
     return;
   }
   if (plan.status == PlanStatus::kFailed) {
-    FinishAction(r, false, "task planner: " + plan.reason, now);
+    // FAILED is "not decided" (the planner's budget or deadline spent before a station was
+    // found; COMPLETE is the answer when there is none): asked again after retry_delay, a
+    // station not decided counting as one not reached.
+    ++r.failed_in_a_row;
+    if (r.failed_in_a_row >= options_.max_failed_stations) {
+      FinishAction(r, false,
+                   "exploration: " + std::to_string(r.failed_in_a_row) +
+                       " stations in a row not reached or not decided; the last: task planner: " + plan.reason,
+                   now);
+      return;
+    }
+    Event("no station decided (task planner: " + plan.reason + "): asking again in " +
+          std::to_string(static_cast<int>(std::lround(options_.retry_delay))) + " s");
+    r.not_before = now + Us(options_.retry_delay);
     return;
   }
   const Task& station = plan.tasks.front();

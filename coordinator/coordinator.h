@@ -55,7 +55,7 @@ struct CoordinatorOptions {
   std::string required = "vehicle_sim,ladar_driver,contour_mapper,path_planner,path_tracker,task_planner,cutter";
   bool explore = true;             // survey the unknown section first
   int max_stations = 30;           // scan stations at most
-  int max_failed_stations = 3;     // consecutive stations not reached: the exploration fails
+  int max_failed_stations = 3;     // consecutive stations not reached (or not decided: the task planner's FAILED): the exploration fails
   double station_dwell = 2.0;      // s standing at each station (scans for the mapper)
   bool advance = true;             // then advance an entry
   std::string face;                // "x,y,theta": a point in front of the face to advance and the direction of advance

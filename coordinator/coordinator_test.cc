@@ -75,6 +75,7 @@ struct FakeFleet {
   std::set<int64_t> fail_drives_of_goal_x;    // drives to these x fail once each
   std::set<int64_t> failed_once;
   std::set<int64_t> unreachable_x;            // path requests to these x are infeasible
+  int fail_surveys = 0;                       // the first survey requests answered FAILED
   bool cutter_drum_on = false;
   double first_cut_side_shift = 0.0;          // m the first cut leaves the vehicle to its left
   // What the fleet saw.
@@ -121,7 +122,11 @@ struct FakeFleet {
       task_requests.push_back(q);
       TaskPlan p;
       if (q.kind == TaskRequestKind::kSurveyNext) {
-        if (next_station < stations.size()) {
+        if (fail_surveys > 0) {
+          --fail_surveys;
+          p.status = PlanStatus::kFailed;
+          p.reason = "deadline: planning was stopped at 5.000 s: no station found within the plan budget";
+        } else if (next_station < stations.size()) {
           p.status = PlanStatus::kOk;
           p.tasks = {MakeTask(900 + static_cast<int64_t>(next_station), TaskKind::kScanStation,
                               stations[next_station], "station")};
@@ -386,6 +391,40 @@ TEST(CoordinatorTest, StationsThatCannotBeReachedEndTheExplorationWithTheReason)
             std::string::npos)
       << c.Status().message;
   EXPECT_GE(f.stops, 1) << "the vehicle is told to stop";
+}
+
+TEST(CoordinatorTest, AStationNotDecidedIsAskedForAgainAfterTheRetryDelay) {
+  // The task planner's FAILED (its deadline spent before a station was found) is asked again
+  // after retry_delay, and the mission goes on.
+  CoordinatorOptions o = Options();
+  o.retry_delay = 3.0;
+  Coordinator c(o, 1000);
+  FakeFleet f(c);
+  f.fail_surveys = 2;
+  StartMission(c, f);
+  ASSERT_TRUE(f.RunUntilFinished(600));
+  EXPECT_EQ(c.state(), MissionState::kDone) << c.Status().message;
+  EXPECT_EQ(c.stats().stations_visited, 3);
+  // Two FAILED answers, three stations, the COMPLETE one and the advance.
+  ASSERT_EQ(f.task_requests.size(), 7u);
+  int events = 0;
+  for (const std::string& e : c.stats().events) events += e.rfind("no station decided (task planner: deadline", 0) == 0;
+  EXPECT_EQ(events, 2);
+}
+
+TEST(CoordinatorTest, StationsNotDecidedEndTheExplorationWithTheReason) {
+  CoordinatorOptions o = Options();
+  o.max_failed_stations = 2;
+  Coordinator c(o, 1000);
+  FakeFleet f(c);
+  f.fail_surveys = 5;
+  StartMission(c, f);
+  ASSERT_TRUE(f.RunUntilFinished(600));
+  EXPECT_EQ(c.state(), MissionState::kFailed);
+  EXPECT_EQ(f.task_requests.size(), 2u);
+  EXPECT_NE(c.Status().message.find("2 stations in a row not reached or not decided; the last: task planner: deadline"),
+            std::string::npos)
+      << c.Status().message;
 }
 
 TEST(CoordinatorTest, ALostProcessStopsTheVehicleAndTheMissionGoesOnWhenItIsBack) {
