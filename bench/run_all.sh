@@ -51,6 +51,7 @@ benches=(
   "mapper_scale_bench|"
   "mapper_dynamic_bench|"
   "planner_bench|"
+  "footprint_collision_bench|"
   "planner_ompl_bench|"
   "task_planner_bench|"
   "auth_bench|"

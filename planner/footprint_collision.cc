@@ -31,6 +31,22 @@ std::vector<Disc> DiscCover(const Footprint& footprint, int count) {
   return discs;
 }
 
+namespace {
+
+// Is the polygon its own bounding box (4 vertices, each a corner of it)?
+bool IsAxisAlignedBox(const std::vector<Eigen::Vector2d>& v, const Eigen::Vector2d& lo, const Eigen::Vector2d& hi) {
+  if (v.size() != 4 || !(lo.x() < hi.x()) || !(lo.y() < hi.y())) return false;
+  int corners = 0;  // one bit per corner seen
+  for (const Eigen::Vector2d& p : v) {
+    const bool x_lo = p.x() == lo.x(), x_hi = p.x() == hi.x(), y_lo = p.y() == lo.y(), y_hi = p.y() == hi.y();
+    if (!(x_lo || x_hi) || !(y_lo || y_hi)) return false;
+    corners |= 1 << ((x_hi ? 1 : 0) + (y_hi ? 2 : 0));
+  }
+  return corners == 0xF;
+}
+
+}  // namespace
+
 FootprintCollisionChecker::FootprintCollisionChecker(const StaticSegmentIndex& walls, const ClearanceField& field,
                                                      Footprint footprint, double margin, int discs)
     : walls_(walls),
@@ -51,6 +67,7 @@ FootprintCollisionChecker::FootprintCollisionChecker(const StaticSegmentIndex& w
     box_lo_ = box_lo_.cwiseMin(p);
     box_hi_ = box_hi_.cwiseMax(p);
   }
+  box_footprint_ = IsAxisAlignedBox(v, box_lo_, box_hi_);
   inside_.push_back({Eigen::Vector2d::Zero(), inscribed_});
   for (const Disc& d : discs_)
     if (PolygonContains(v, d.centre)) inside_.push_back({d.centre, inset(d.centre)});
@@ -101,6 +118,14 @@ double FootprintCollisionChecker::ExactSpare(const Pose2& pose, double c, double
     if (std::max(a.x(), b.x()) < lo.x() || std::min(a.x(), b.x()) > hi.x() || std::max(a.y(), b.y()) < lo.y() ||
         std::min(a.y(), b.y()) > hi.y())
       return;
+    if (box_footprint_) {
+      // The polygon is its box (common/segment_index.h's box-to-segment distance: 0 when the
+      // wall meets it).
+      const double distance = BoxSegmentMinDistance(box_lo_, box_hi_, Segment(a, b));
+      hit = distance < margin_ || distance <= 0.0;
+      nearest = std::min(nearest, distance);
+      return;
+    }
     if (PolygonContains(v, a) || PolygonContains(v, b)) {
       hit = true;
       return;

@@ -12,7 +12,9 @@
 //   otherwise the exact polygon-against-segment test against the walls near the pose
 //             (common/segment_index.h): a wall end inside the polygon, or a wall within margin
 //             of an edge, is a collision; when free, the least distance measured less the
-//             margin is the spare (capped), so the sweeps skip poses near walls too.
+//             margin is the spare (capped), so the sweeps skip poses near walls too. A
+//             rectangle (the polygon is its own box) takes one box-to-segment distance per
+//             wall instead of every edge: 1.6-1.8x faster (bench/footprint_collision_bench).
 // Both field decisions are implied by the exact test's answer, so the field changes the time
 // a check takes, never its result (planner_test checks that against brute force).
 
@@ -90,6 +92,7 @@ class FootprintCollisionChecker {
   std::vector<Disc> discs_;
   std::vector<Disc> inside_;  // points inside the polygon, radius = their distance to its boundary
   Eigen::Vector2d box_lo_, box_hi_;  // the polygon's bounding box (vehicle frame)
+  bool box_footprint_ = false;       // the polygon is that box (a rectangle centred anyhow): the exact test's quick path
   mutable CollisionCounters counters_;
 };
 

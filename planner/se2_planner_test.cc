@@ -297,6 +297,38 @@ TEST(FootprintCollisionTest, DiscCoverHoldsThePolygonAndDecidesMostPosesInAnEntr
       << r.collisions.free_by_field << " by the field, " << r.collisions.exact_tests << " exact";
 }
 
+TEST(FootprintCollisionTest, ARectanglesQuickExactTestAgreesWithTheGeneralPolygonTest) {
+  // The miner as its 4 corners (the box path) and as the same rectangle with a fifth vertex
+  // in the middle of its front edge (the general polygon path): the same answer and the same
+  // spare at every pose near the walls of a crossing, with and without a margin.
+  std::vector<Segment> walls = planner_test::Crossing(7.0, 20.0);
+  walls.push_back({2.0, 8.0, 2.5, 9.0});
+  const planner_test::CheckerWorld world(walls);
+  const Footprint box = Footprint::Rectangle(3.3, 10.0);
+  const Footprint five = planner_test::WithFrontMidpoint(box);
+  ASSERT_EQ(five.vertices.size(), 5u);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-6, 6), a(-kPi, kPi);
+  for (const double margin : {0.0, 0.125}) {
+    const FootprintCollisionChecker quick(world.index, world.field, box, margin);
+    const FootprintCollisionChecker general(world.index, world.field, five, margin);
+    int collisions = 0, spares = 0;
+    for (int i = 0; i < 4000; ++i) {
+      const Pose2 p(u(rng), u(rng), a(rng));
+      const double c = std::cos(p.theta), sn = std::sin(p.theta);
+      const double q = quick.ExactSpare(p, c, sn), g = general.ExactSpare(p, c, sn);
+      ASSERT_EQ(q < 0.0, g < 0.0) << p << " margin " << margin;
+      if (g >= 0.0) {
+        ASSERT_NEAR(q, g, 1e-9) << p;
+      }
+      collisions += g < 0.0;
+      spares += g > 0.0 && g < FootprintCollisionChecker::kExactSpareCap;
+    }
+    EXPECT_GT(collisions, 1000) << "margin " << margin;
+    EXPECT_GT(spares, 100) << "margin " << margin;
+  }
+}
+
 TEST(FootprintCollisionTest, AnyPolygonAgreesWithBruteForce) {
   // A pentagon with a pointed nose (not a rectangle): the cover is of its bounding box, the
   // inside points are the disc centres inside it. Never free when brute force finds contact.

@@ -6,6 +6,9 @@
 
 #include "common/geometry.h"
 #include "common/pose2.h"
+#include "common/segment_index.h"
+#include "planner/clearance_field.h"
+#include "planner/footprint.h"
 #include "planner/motion.h"
 #include "planner/testing/path_checker.h"
 
@@ -18,6 +21,39 @@ inline void AddBox(std::vector<Segment>& m, double x0, double y0, double x1, dou
   m.push_back({x1, y1, x0, y1});
   m.push_back({x0, y1, x0, y0});
 }
+
+// The same polygon as `box` (a rectangle) with a fifth vertex in the middle of its front edge
+// (x > 0): not a 4-corner box, so the collision checker takes its general polygon path.
+inline Footprint WithFrontMidpoint(const Footprint& box) {
+  Footprint five = box;
+  for (size_t i = 0; i < box.vertices.size(); ++i) {
+    const Eigen::Vector2d& p = box.vertices[i];
+    const Eigen::Vector2d& q = box.vertices[(i + 1) % box.vertices.size()];
+    if (p.x() > 0.0 && q.x() > 0.0) {
+      five.vertices.insert(five.vertices.begin() + static_cast<std::ptrdiff_t>(i) + 1, 0.5 * (p + q));
+      break;
+    }
+  }
+  return five;
+}
+
+// What a FootprintCollisionChecker is built on: `walls` inside the box [-20, 20]^2, their
+// index and their clearance field (0.2 m cells, capped at 8 m).
+struct CheckerWorld {
+  std::vector<Segment> walls;
+  StaticSegmentIndex index;
+  ClearanceField field;
+  explicit CheckerWorld(std::vector<Segment> w)
+      : walls(Boxed(std::move(w))),
+        index(walls),
+        field(walls, GridFrame::Covering(Eigen::Vector2d(-20, -20), Eigen::Vector2d(20, 20), 0.2, 0.0), 8.0) {}
+
+ private:
+  static std::vector<Segment> Boxed(std::vector<Segment> w) {
+    AddBox(w, -20, -20, 20, 20);
+    return w;
+  }
+};
 
 inline std::vector<Segment> Room(double w, double h) {
   std::vector<Segment> m;
