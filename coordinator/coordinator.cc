@@ -596,14 +596,7 @@ void Coordinator::TickPlanRequest(Running& r, TaskRequestKind kind, int64_t now)
     // FAILED is "not decided" (the planner's budget or deadline spent before a station was
     // found; COMPLETE is the answer when there is none): asked again after retry_delay, a
     // station not decided counting as one not reached.
-    ++r.failed_in_a_row;
-    if (r.failed_in_a_row >= options_.max_failed_stations) {
-      FinishAction(r, false,
-                   "exploration: " + std::to_string(r.failed_in_a_row) +
-                       " stations in a row not reached or not decided; the last: task planner: " + plan.reason,
-                   now);
-      return;
-    }
+    if (ExplorationFailedAgain(r, "not reached or not decided", "task planner: " + plan.reason, now)) return;
     Event("no station decided (task planner: " + plan.reason + "): asking again in " +
           std::to_string(static_cast<int>(std::lround(options_.retry_delay))) + " s");
     r.not_before = now + Us(options_.retry_delay);
@@ -618,6 +611,17 @@ void Coordinator::TickPlanRequest(Running& r, TaskRequestKind kind, int64_t now)
   TickDrive(*r.drive, now);  // the path request goes out now; an end is seen on the next tick
 }
 
+bool Coordinator::ExplorationFailedAgain(Running& r, const std::string& failures, const std::string& last,
+                                         int64_t now) {
+  ++r.failed_in_a_row;
+  if (r.failed_in_a_row < options_.max_failed_stations) return false;
+  FinishAction(r, false,
+               "exploration: " + std::to_string(r.failed_in_a_row) + " stations in a row " + failures +
+                   "; the last: " + last,
+               now);
+  return true;
+}
+
 void Coordinator::TickExplore(Running& r, int64_t now) {
   if (r.drive) {
     if (!TickDrive(*r.drive, now)) return;
@@ -628,15 +632,10 @@ void Coordinator::TickExplore(Running& r, int64_t now) {
       r.dwell_until = now + Us(options_.station_dwell);
     } else {
       ++stats_.stations_failed;
-      ++r.failed_in_a_row;
       Event("station " + Where(r.drive->goal) + " not reached: " + r.drive->reason);
-      if (r.failed_in_a_row >= options_.max_failed_stations) {
-        const std::string why = "exploration: " + std::to_string(r.failed_in_a_row) +
-                                " stations in a row not reached; the last: " + r.drive->reason;
-        r.drive.reset();
-        FinishAction(r, false, why, now);
-        return;
-      }
+      const std::string why = r.drive->reason;
+      r.drive.reset();
+      if (ExplorationFailedAgain(r, "not reached", why, now)) return;
     }
     r.drive.reset();
     return;

@@ -253,6 +253,9 @@ class Coordinator {
   void StartAction(int node, int64_t now);
   void HaltActions(const std::vector<int>& nodes, int64_t now);
   void FinishAction(Running& r, bool success, const std::string& reason, int64_t now);
+  // One more station in a row `failures` ("not reached", ...): true when that is
+  // max_failed_stations and the exploration has failed, its reason naming `last`.
+  bool ExplorationFailedAgain(Running& r, const std::string& failures, const std::string& last, int64_t now);
   void TickAction(Running& r, int64_t now);
   void TickWaitFleet(Running& r, int64_t now);
   void TickPlanRequest(Running& r, TaskRequestKind kind, int64_t now);

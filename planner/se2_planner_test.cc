@@ -235,15 +235,13 @@ TEST(FootprintCollisionTest, TheSpareOfEveryCheckHoldsAgainstBruteForce) {
   // (a translation t and a turn d about the origin with |t| + circumscribed |d| <= s) is free
   // by brute force with the margin. Poses near the walls (the exact test's spare) and in the
   // open (the discs').
-  std::vector<Segment> walls = planner_test::Crossing(6.0, 20.0);
-  walls.push_back({2.0, 8.0, 2.5, 9.0});
-  planner_test::AddBox(walls, -20, -20, 20, 20);
+  std::vector<Segment> crossing = planner_test::Crossing(6.0, 20.0);
+  crossing.push_back({2.0, 8.0, 2.5, 9.0});
+  const planner_test::CheckerWorld world(crossing);
+  const std::vector<Segment>& walls = world.walls;
   const double margin = 0.075;
   const Footprint miner = Footprint::Rectangle(3.3, 10.0);
-  const StaticSegmentIndex index(walls);
-  const GridFrame frame = GridFrame::Covering(Eigen::Vector2d(-20, -20), Eigen::Vector2d(20, 20), 0.2, 0.0);
-  const ClearanceField field(walls, frame, 8.0);
-  const FootprintCollisionChecker checker(index, field, miner, margin);
+  const FootprintCollisionChecker checker(world.index, world.field, miner, margin);
   testing::PathCheckSettings st;
   st.polygon = miner.vertices;
   st.clearance = margin;
