@@ -43,9 +43,7 @@ void InstallStopHandlers() {
 std::string NextPart(const std::string& out) {
   std::error_code ec;
   for (int n = 0; n < 100; ++n) {
-    char suffix[8];
-    std::snprintf(suffix, sizeof suffix, ".%02d", n);
-    const std::string part = out + suffix;
+    const std::string part = out + (n < 10 ? ".0" : ".") + std::to_string(n);
     if (!std::filesystem::exists(part, ec) && !std::filesystem::exists(part + ".partial", ec)) return part;
   }
   throw InputError(out + ": parts .00 to .99 all exist; refusing to overwrite");
