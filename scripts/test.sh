@@ -21,12 +21,19 @@ fuzz_only=0
 require=OFF
 [ "${MINENAV_REQUIRE_DATASETS:-}" = "1" ] && require=ON
 
+# Each stage says how long it took: CI stops at 90 minutes, and the build and test times of
+# every stage are what to look at first when it comes near (docs/DESIGN.md, "CI").
+stage_started=$SECONDS
+stage_done() { echo "== [$1] took $((SECONDS - stage_started)) s (${SECONDS} s since the start)"; stage_started=$SECONDS; }
+
 run_suite() {
   local name="$1" dir="$2"; shift 2
   echo "== [$name] configure and build in $dir"
   minenav_build "$dir" -DMINENAV_WERROR=ON -DMINENAV_REQUIRE_DATASETS=$require "$@"
+  stage_done "$name build"
   echo "== [$name] tests"
   (cd "$dir" && ctest --output-on-failure -j "$MINENAV_JOBS" --timeout 600)
+  stage_done "$name tests"
 }
 
 # The fuzz stage: the fuzz targets and what they link only (target fuzz_targets), unoptimised
@@ -42,11 +49,13 @@ run_fuzz() {
     -DMINENAV_FUZZ_SECONDS="${MINENAV_FUZZ_SECONDS:-3}" \
     -DCMAKE_BUILD_TYPE=FuzzSmoke "-DCMAKE_CXX_FLAGS_FUZZSMOKE=-O0 -gline-tables-only" \
     "-DCMAKE_C_FLAGS_FUZZSMOKE=-O0 -gline-tables-only" -- fuzz_targets
+  stage_done "fuzz build"
   echo "== [fuzz] each target over its corpus"
   # The same sanitizer options whether or not the sanitizer suite ran before (libFuzzer handles
   # the crash itself: no abort_on_error).
   (cd "$dir" && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
     ctest --output-on-failure -j "$MINENAV_JOBS" -L fuzz)
+  stage_done "fuzz tests"
 }
 
 if [ $fuzz_only -eq 1 ]; then
