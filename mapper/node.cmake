@@ -44,6 +44,7 @@ if(EXISTS "${CMAKE_SOURCE_DIR}/tests/child_process.cc")
   target_link_libraries(contour_mapper_live_test PRIVATE minenav_mapping_session minenav_node minenav_child_process
                         GTest::gtest_main)
   minenav_warnings(contour_mapper_live_test)
+  minenav_sanitized_test_at_o0(contour_mapper_live_test)
   set_target_properties(contour_mapper_live_test PROPERTIES RUNTIME_OUTPUT_DIRECTORY "${CMAKE_BINARY_DIR}/tests")
   target_compile_definitions(contour_mapper_live_test PRIVATE
     MINENAV_CONTOUR_MAPPER_BIN="$<TARGET_FILE:contour_mapper>" MINENAV_LOG_TOOL_BIN="$<TARGET_FILE:log_tool>")
@@ -62,6 +63,7 @@ if(EXISTS "${CMAKE_SOURCE_DIR}/tests/child_process.cc")
   target_link_libraries(contour_mapper_live_stop_test PRIVATE minenav_mapping_session minenav_node minenav_child_process
                         GTest::gtest_main)
   minenav_warnings(contour_mapper_live_stop_test)
+  minenav_sanitized_test_at_o0(contour_mapper_live_stop_test)
   set_target_properties(contour_mapper_live_stop_test PROPERTIES RUNTIME_OUTPUT_DIRECTORY "${CMAKE_BINARY_DIR}/tests")
   target_compile_definitions(contour_mapper_live_stop_test PRIVATE
     MINENAV_CONTOUR_MAPPER_BIN="$<TARGET_FILE:contour_mapper>")

@@ -36,6 +36,7 @@ if(TARGET vehicle_sim AND TARGET ladar_driver AND TARGET contour_mapper)
     MINENAV_VEHICLE_SIM_BIN="$<TARGET_FILE:vehicle_sim>" MINENAV_LADAR_DRIVER_BIN="$<TARGET_FILE:ladar_driver>"
     MINENAV_CONTOUR_MAPPER_BIN="$<TARGET_FILE:contour_mapper>" MINENAV_CUTTER_BIN="$<TARGET_FILE:cutter>")
   minenav_warnings(cutter_bus_test)
+  minenav_sanitized_test_at_o0(cutter_bus_test)
   set_target_properties(cutter_bus_test PROPERTIES RUNTIME_OUTPUT_DIRECTORY "${CMAKE_BINARY_DIR}/tests")
   add_dependencies(cutter_bus_test vehicle_sim ladar_driver contour_mapper cutter)
   add_test(NAME bus.cutter_box_cut

@@ -5,6 +5,7 @@ target_include_directories(fleet_test PRIVATE "${CMAKE_SOURCE_DIR}")
 target_link_libraries(fleet_test PRIVATE minenav_test_support minenav_node GTest::gtest_main)
 target_compile_definitions(fleet_test PRIVATE ${MINENAV_PROCESS_DEFS})
 minenav_warnings(fleet_test)
+minenav_sanitized_test_at_o0(fleet_test)
 set_target_properties(fleet_test PROPERTIES RUNTIME_OUTPUT_DIRECTORY "${CMAKE_BINARY_DIR}/tests")
 add_dependencies(fleet_test vehicle_sim ladar_driver)
 
@@ -33,6 +34,7 @@ target_include_directories(vehicle_safety_bus_test PRIVATE "${CMAKE_SOURCE_DIR}"
 target_link_libraries(vehicle_safety_bus_test PRIVATE minenav_test_support minenav_node GTest::gtest_main)
 target_compile_definitions(vehicle_safety_bus_test PRIVATE ${MINENAV_PROCESS_DEFS})
 minenav_warnings(vehicle_safety_bus_test)
+minenav_sanitized_test_at_o0(vehicle_safety_bus_test)
 set_target_properties(vehicle_safety_bus_test PROPERTIES RUNTIME_OUTPUT_DIRECTORY "${CMAKE_BINARY_DIR}/tests")
 add_dependencies(vehicle_safety_bus_test vehicle_sim)
 add_test(NAME bus.vehicle_stops_at_its_stale_limit
@@ -59,6 +61,7 @@ if(TARGET contour_mapper AND TARGET iconic_pose_estimator AND TARGET log_tool)
     MINENAV_CONTOUR_MAPPER_BIN="$<TARGET_FILE:contour_mapper>"
     MINENAV_IPE_BIN="$<TARGET_FILE:iconic_pose_estimator>")
   minenav_warnings(hostile_input_bus_test)
+  minenav_sanitized_test_at_o0(hostile_input_bus_test)
   set_target_properties(hostile_input_bus_test PROPERTIES RUNTIME_OUTPUT_DIRECTORY "${CMAKE_BINARY_DIR}/tests")
   add_dependencies(hostile_input_bus_test contour_mapper iconic_pose_estimator)
   function(minenav_hostile_bus_test name port filter)
@@ -87,6 +90,7 @@ if(TARGET contour_mapper AND TARGET path_planner AND TARGET path_tracker AND TAR
     MINENAV_PATH_TRACKER_BIN="$<TARGET_FILE:path_tracker>"
     MINENAV_SURVEY_CLIENT_BIN="$<TARGET_FILE:survey_client>")
   minenav_warnings(planner_live_bus_test)
+  minenav_sanitized_test_at_o0(planner_live_bus_test)
   set_target_properties(planner_live_bus_test PROPERTIES RUNTIME_OUTPUT_DIRECTORY "${CMAKE_BINARY_DIR}/tests")
   add_dependencies(planner_live_bus_test vehicle_sim ladar_driver contour_mapper path_planner path_tracker survey_client)
   add_test(NAME bus.planner_on_the_live_contour_map
@@ -137,6 +141,7 @@ target_link_libraries(command_auth_bus_test PRIVATE minenav_test_support minenav
 target_compile_definitions(command_auth_bus_test PRIVATE ${MINENAV_PROCESS_DEFS}
   MINENAV_COMMAND_ATTACKER_BIN="$<TARGET_FILE:command_attacker>")
 minenav_warnings(command_auth_bus_test)
+minenav_sanitized_test_at_o0(command_auth_bus_test)
 set_target_properties(command_auth_bus_test PROPERTIES RUNTIME_OUTPUT_DIRECTORY "${CMAKE_BINARY_DIR}/tests")
 add_dependencies(command_auth_bus_test vehicle_sim command_attacker)
 add_test(NAME bus.command_auth
