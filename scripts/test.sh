@@ -22,7 +22,7 @@ require=OFF
 [ "${MINENAV_REQUIRE_DATASETS:-}" = "1" ] && require=ON
 
 # Each stage says how long it took: CI stops at 90 minutes, and the build and test times of
-# every stage are what to look at first when it comes near (docs/DESIGN.md, "CI").
+# every stage are what to look at first when it comes near (docs/DESIGN.md, "Tests and CI").
 stage_started=$SECONDS
 stage_done() { echo "== [$1] took $((SECONDS - stage_started)) s (${SECONDS} s since the start)"; stage_started=$SECONDS; }
 
