@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
-# Runs every test twice: a normal build with warnings as errors, then an
-# AddressSanitizer + UndefinedBehaviorSanitizer build; then the fuzz stage: a clang-14 build of
-# the libFuzzer targets alone (fuzz/README.md), each its committed corpus and then 3 s of
+# Runs the tests twice: a normal build with warnings as errors (every test), then an
+# AddressSanitizer + UndefinedBehaviorSanitizer build (all but sanitize_exclude's five, below);
+# then the fuzz stage: a clang-14 build of the libFuzzer targets alone (fuzz/README.md), each its committed corpus and then 3 s of
 # mutation (MINENAV_FUZZ_SECONDS=N in the environment: N seconds; 0: every input once, no mutation).
 # Installs what is missing first.
 #   scripts/test.sh            both builds and the fuzz stage
