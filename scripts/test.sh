@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Runs the tests twice: a normal build with warnings as errors (every test), then an
 # AddressSanitizer + UndefinedBehaviorSanitizer build (all but sanitize_exclude's five, below);
-# then the fuzz stage: a clang-14 build of the libFuzzer targets alone (fuzz/README.md), each its committed corpus and then 3 s of
-# mutation (MINENAV_FUZZ_SECONDS=N in the environment: N seconds; 0: every input once, no mutation).
+# then the fuzz stage: a clang-14 build of the libFuzzer targets alone (fuzz/README.md), each
+# its committed corpus and then 3 s of mutation (MINENAV_FUZZ_SECONDS=N in the environment:
+# N seconds; 0: every input once, no mutation).
 # Installs what is missing first.
 #   scripts/test.sh            both builds and the fuzz stage
 #   scripts/test.sh --quick    the normal build only
