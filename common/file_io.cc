@@ -238,13 +238,36 @@ void ForEachCsvRow(const std::string& text, const std::string& source_name,
 
 }  // namespace
 
+const char* PoseStatusName(PoseStatus status) {
+  switch (status) {
+    case PoseStatus::kEstimated: return "estimated";
+    case PoseStatus::kInserted: return "inserted";
+    case PoseStatus::kTracked: return "tracked";
+    case PoseStatus::kNotConverged: return "not_converged";
+  }
+  return "estimated";
+}
+
+bool IsEstimate(PoseStatus status) { return status != PoseStatus::kNotConverged; }
+
+namespace {
+
+PoseStatus ParsePoseStatus(const std::string& text, const std::string& where) {
+  for (PoseStatus s : {PoseStatus::kEstimated, PoseStatus::kInserted, PoseStatus::kTracked, PoseStatus::kNotConverged})
+    if (text == PoseStatusName(s)) return s;
+  throw InputError(where + ": status '" + text + "' is not estimated, inserted, tracked or not_converged");
+}
+
+}  // namespace
+
 std::vector<StampedPose> ParsePosesCsv(const std::string& text, const std::string& source_name) {
   std::vector<StampedPose> out;
-  ForEachCsvRow(text, source_name, {{"utime", "x", "y", "theta"}},
+  ForEachCsvRow(text, source_name, {{"utime", "x", "y", "theta"}, {"utime", "x", "y", "theta", "status"}},
                 [&](const std::vector<std::string>& f, const std::string& where) {
                   out.push_back({ParseInt64(f[0], where),
                                  Pose2(ParseDouble(f[1], where), ParseDouble(f[2], where),
-                                       ParseDouble(f[3], where))});
+                                       ParseDouble(f[3], where)),
+                                 f.size() > 4 ? ParsePoseStatus(f[4], where) : PoseStatus::kEstimated});
                 });
   return out;
 }
@@ -253,8 +276,10 @@ std::vector<StampedPose> LoadPosesCsv(const std::string& path) { return ParsePos
 
 std::string PosesToCsv(const std::vector<StampedPose>& poses) {
   std::ostringstream os;
-  os << "utime,x,y,theta\n" << std::setprecision(10);
-  for (const auto& p : poses) os << p.utime << "," << p.pose.x << "," << p.pose.y << "," << p.pose.theta << "\n";
+  os << "utime,x,y,theta,status\n" << std::setprecision(10);
+  for (const auto& p : poses)
+    os << p.utime << "," << p.pose.x << "," << p.pose.y << "," << p.pose.theta << "," << PoseStatusName(p.status)
+       << "\n";
   return os.str();
 }
 

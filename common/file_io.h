@@ -50,10 +50,25 @@ std::vector<Segment> LoadSegmentsJson(const std::string& path);
 std::string SegmentsToJson(const std::vector<Segment>& segments);
 void SaveSegmentsJson(const std::string& path, const std::vector<Segment>& segments);
 
-// Poses CSV, header utime,x,y,theta: one row per scan, theta in radians.
+// What a row of a poses CSV is (its fifth column, `status`): an estimate, or the guess an
+// estimator started from and could not confirm. The same column in every estimator's and the
+// mapper's --poses-out, so a scorer can leave the guesses out (evaluation/relations.h).
+enum class PoseStatus {
+  kEstimated,     // "estimated": an estimator's converged answer (IPE, FPE); a 4-column file's rows
+  kInserted,      // "inserted": a scan the mapper inserted, at its refined pose
+  kTracked,       // "tracked": a scan the mapper tracked against its map
+  kNotConverged,  // "not_converged": no estimate: the initial pose the match started from
+};
+const char* PoseStatusName(PoseStatus status);
+// False only for kNotConverged.
+bool IsEstimate(PoseStatus status);
+
+// Poses CSV, header utime,x,y,theta,status (or utime,x,y,theta: every row estimated): one row
+// per scan, theta in radians.
 struct StampedPose {
   int64_t utime = 0;
   Pose2 pose;
+  PoseStatus status = PoseStatus::kEstimated;
 };
 std::vector<StampedPose> ParsePosesCsv(const std::string& text, const std::string& source_name);
 std::vector<StampedPose> LoadPosesCsv(const std::string& path);

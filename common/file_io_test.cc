@@ -64,6 +64,35 @@ TEST(FileIoTest, PosesCsvRoundTripAndErrors) {
   }
 }
 
+// Issue 18: a poses file says which rows are estimates. Each status survives the round trip, a
+// file of the old four columns reads as estimates, and an unknown status names its line.
+TEST(FileIoTest, PosesCsvStatusColumn) {
+  const std::vector<StampedPose> poses = {{100, {1, 2, 0.5}, PoseStatus::kEstimated},
+                                          {200, {2, 2, 0.5}, PoseStatus::kInserted},
+                                          {300, {3, 2, 0.5}, PoseStatus::kTracked},
+                                          {400, {4, 2, 0.5}, PoseStatus::kNotConverged}};
+  const std::string csv = PosesToCsv(poses);
+  EXPECT_EQ(csv.substr(0, csv.find('\n')), "utime,x,y,theta,status");
+  EXPECT_NE(csv.find("\n400,4,2,0.5,not_converged\n"), std::string::npos) << csv;
+  const auto back = ParsePosesCsv(csv, "mem");
+  ASSERT_EQ(back.size(), 4u);
+  for (size_t i = 0; i < poses.size(); ++i) EXPECT_EQ(back[i].status, poses[i].status) << i;
+  EXPECT_TRUE(IsEstimate(back[1].status));
+  EXPECT_TRUE(IsEstimate(back[2].status));
+  EXPECT_FALSE(IsEstimate(back[3].status));
+
+  const auto old = ParsePosesCsv("utime,x,y,theta\n1,2,3,4\n", "old.csv");
+  ASSERT_EQ(old.size(), 1u);
+  EXPECT_EQ(old[0].status, PoseStatus::kEstimated);
+  try {
+    ParsePosesCsv("utime,x,y,theta,status\n1,2,3,4,tracked\n2,2,3,4,guessed\n", "p.csv");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("p.csv:3: status 'guessed'"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(ParsePosesCsv("utime,x,y,theta,status\n1,2,3,4\n", "p.csv"), InputError);
+}
+
 TEST(FileIoTest, StationsWithOptionalWorldColumn) {
   auto st = ParseStationsCsv("x,y,theta\n1,2,0.1\n3,4,0.2\n", "s.csv");
   ASSERT_EQ(st.size(), 2u);

@@ -103,11 +103,23 @@ RelationScore ScoreRelations(const std::vector<Relation>& relations, const std::
     score.reason = "no relations";
     return score;
   }
-  if (estimates.empty()) {
-    score.reason = "no estimated poses";
+  // A row that is no estimate (the initial pose of a match that did not converge) is left out:
+  // a relation at its time is scored from the estimates around it, or skipped.
+  std::vector<StampedPose> kept;
+  kept.reserve(estimates.size());
+  for (const StampedPose& p : estimates) {
+    if (IsEstimate(p.status))
+      kept.push_back(p);
+    else
+      ++score.not_estimates;
+  }
+  if (kept.empty()) {
+    score.reason = estimates.empty() ? "no estimated poses"
+                                     : "no estimated poses (" + std::to_string(score.not_estimates) +
+                                           " rows not converged)";
     return score;
   }
-  const std::vector<StampedPose> est = SortedByTime(estimates);
+  const std::vector<StampedPose> est = SortedByTime(kept);
   const std::vector<StampedPose> odo = SortedByTime(odometry);
   const int64_t max_gap = ToMicros(options.max_time_gap);
   const int64_t max_odo_gap = ToMicros(options.max_odometry_gap);

@@ -67,6 +67,7 @@ struct RelationScore {
   int64_t n = 0;              // scored
   int64_t skipped = 0;        // no estimate within reach (and no usable odometry)
   int64_t odometry_corrected = 0;  // scored relations that needed odometry
+  int64_t not_estimates = 0;  // rows of `estimates` left out: not converged (PoseStatus)
   ErrorStatistic translation;         // m
   ErrorStatistic translation_squared; // m^2
   ErrorStatistic rotation;            // deg
@@ -74,8 +75,8 @@ struct RelationScore {
   std::vector<RelationErrorEntry> entries;  // one per scored relation, in file order
 };
 
-// Scores `estimates` (any order; robot poses keyed by utime, e.g. a poses CSV) against
-// `relations`. `odometry` (any order; may be empty) corrects estimates farther than
+// Scores `estimates` (any order; robot poses keyed by utime, e.g. a poses CSV; rows whose
+// status is not an estimate are left out and counted) against `relations`. `odometry` (any order; may be empty) corrects estimates farther than
 // max_time_gap from a relation time. Never throws for bad data: an empty result says why.
 RelationScore ScoreRelations(const std::vector<Relation>& relations, const std::vector<StampedPose>& estimates,
                              const std::vector<StampedPose>& odometry, const RelationOptions& options = {});

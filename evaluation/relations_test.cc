@@ -68,6 +68,32 @@ TEST(RelationsTest, ExactSmallCase) {
   EXPECT_NEAR(s.rotation_squared.mean, (r0 * r0 + r1 * r1) / 2, 1e-9);
 }
 
+// Issue 18: a row marked not_converged (the guess a match started from) is no estimate: a
+// relation at its time is scored from the estimate before it moved on by odometry, or skipped.
+TEST(RelationsTest, RowsNotConvergedAreLeftOutAndCounted) {
+  StampedPose guess = At(2.0, 5, 5, 1.0);  // far off: scored, it would cost metres
+  guess.status = PoseStatus::kNotConverged;
+  StampedPose tracked = At(1.0, 0, 0, 0);
+  tracked.status = PoseStatus::kTracked;
+  const std::vector<StampedPose> est = {tracked, guess};
+  const std::vector<StampedPose> odo = {At(0.0, 0, 0, 0), At(3.0, 3, 0, 0)};
+  const std::vector<Relation> rel = {{1 * kSec, 2 * kSec, Pose2(1.0, 0.0, 0.0)}};
+
+  const RelationScore s = ScoreRelations(rel, est, odo);
+  ASSERT_TRUE(s.ok) << s.reason;
+  EXPECT_EQ(s.not_estimates, 1);
+  EXPECT_EQ(s.n, 1);
+  EXPECT_EQ(s.odometry_corrected, 1);  // the pose at 2 s came from 1 s through odometry
+  EXPECT_NEAR(s.entries[0].translation_error, 0.0, 1e-12);
+
+  const RelationScore none = ScoreRelations(rel, {guess}, {});
+  EXPECT_FALSE(none.ok);
+  EXPECT_EQ(none.reason, "no estimated poses (1 rows not converged)");
+  const RelationScore skipped = ScoreRelations(rel, est, {});  // no odometry to bridge the gap
+  EXPECT_FALSE(skipped.ok);
+  EXPECT_EQ(skipped.skipped, 1);
+}
+
 TEST(RelationsTest, NearestWithinGapIsUsedUncorrected) {
   // 0.08 s off: within 0.1 s, used as is even though odometry says the robot moved.
   const std::vector<StampedPose> est = {At(1.0, 0, 0, 0), At(2.08, 2, 0, 0)};

@@ -41,7 +41,7 @@ std::vector<StampedPose> PosesFromLcmLog(const std::string& path, const std::str
         poses.push_back({r.utime, r.pose});
       } else if (DecodeMessage(e->data.data(), size, channel, &est, &error)) {
         const PoseEstimate r = FromLcm(est);
-        poses.push_back({r.utime, r.pose});
+        poses.push_back({r.utime, r.pose, r.converged ? PoseStatus::kEstimated : PoseStatus::kNotConverged});
       } else if (DecodeMessage(e->data.data(), size, channel, &truth, &error)) {
         const TruthReading r = FromLcm(truth);
         poses.push_back({r.utime, r.pose});
@@ -93,7 +93,11 @@ std::string FormatScore(const RelationScore& s) {
                 s.translation.mean, s.translation.std, "translation^2 (m^2)", s.translation_squared.mean,
                 s.translation_squared.std, "rotation (deg)", s.rotation.mean, s.rotation.std, "rotation^2 (deg^2)",
                 s.rotation_squared.mean, s.rotation_squared.std);
-  return buf;
+  std::string text = buf;
+  // A poses file's rows that are no estimates (status not_converged) were left out.
+  if (s.not_estimates > 0)
+    text = "poses left out: " + std::to_string(s.not_estimates) + " rows not converged\n" + text;
+  return text;
 }
 
 nlohmann::json ScoreToJson(const RelationScore& s, const std::string& relations, const std::string& poses,
@@ -108,6 +112,7 @@ nlohmann::json ScoreToJson(const RelationScore& s, const std::string& relations,
                         {"n", s.n},
                         {"skipped", s.skipped},
                         {"odometry_corrected", s.odometry_corrected},
+                        {"poses_not_converged", s.not_estimates},
                         {"translation_m", stat(s.translation)},
                         {"translation_squared_m2", stat(s.translation_squared)},
                         {"rotation_deg", stat(s.rotation)},
@@ -130,7 +135,7 @@ int RunRelationsCommand(const std::vector<std::string>& args) {
       "the mean and sample std of the absolute and squared errors (m, m^2, deg, deg^2).");
   schema.AddString("relations", &relations_path, "relations file (required)");
   schema.AddString("poses", &poses_path,
-                   "estimated robot poses (required): poses CSV utime,x,y,theta (.csv); an LCM log (.lcm,\n"
+                   "estimated robot poses (required): poses CSV utime,x,y,theta[,status] (.csv; rows not_converged left out); an LCM log (.lcm,\n"
                    "channel --poses-channel); or a CARMEN log (the robot poses of its laser lines: the raw\n"
                    "log scores raw odometry, a corrected log scores its corrections)");
   schema.AddString("poses_channel", &poses_channel,

@@ -29,7 +29,7 @@ namespace minenav {
 void DeclareOptions(OptionScope s, ContourMapperNodeOptions& o) {
   s.AddString("map_out", &o.map_out, "contour-map JSON written at the end (required with --log)");
   s.AddString("poses_out", &o.poses_out,
-              "poses CSV utime,x,y,theta written at the end, one row per inserted or tracked scan");
+              "poses CSV utime,x,y,theta,status (inserted or tracked) written at the end, one row per inserted or tracked scan");
   s.AddString("svg_out", &o.svg_out, "SVG of the map and the trajectory written at the end");
   s.AddString("checkpoint", &o.checkpoint, "checkpoint file: resumed from when it exists, saved at shutdown");
   s.AddInt("checkpoint_every", &o.checkpoint_every,

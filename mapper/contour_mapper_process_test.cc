@@ -76,8 +76,12 @@ TEST_F(ContourMapperProcessTest, MapsASurveyLogToTruth) {
   ASSERT_GE(est.size(), 10u) << ReadTextFile((dir_ / "mapper.txt").string());
   const Pose2 est0 = est.front().pose, tru0 = truth_by_utime.at(est.front().utime);
   double worst_position = 0, worst_heading = 0;
+  int inserted = 0;
   for (const auto& e : est) {
     ASSERT_TRUE(truth_by_utime.count(e.utime)) << "pose with a utime of no scan: " << e.utime;
+    // Issue 18: every row says what it is; the mapper writes only scans it inserted or tracked.
+    EXPECT_TRUE(e.status == PoseStatus::kInserted || e.status == PoseStatus::kTracked) << e.utime;
+    inserted += e.status == PoseStatus::kInserted;
     const Pose2 rel_est = Between(est0, e.pose);
     const Pose2 rel_true = Between(tru0, truth_by_utime.at(e.utime));
     worst_position = std::max(worst_position, TranslationDistance(rel_est, rel_true));
@@ -85,6 +89,8 @@ TEST_F(ContourMapperProcessTest, MapsASurveyLogToTruth) {
   }
   EXPECT_LT(worst_position, 0.05) << ReadTextFile((dir_ / "mapper.txt").string());
   EXPECT_LT(worst_heading, DegToRad(0.3));
+  EXPECT_EQ(est.front().status, PoseStatus::kInserted);  // the first scan anchors the map
+  EXPECT_GE(inserted, 1);
 
   const auto contour_map = mapper::LoadContourMapJson(map.string());
   EXPECT_GE(contour_map.contours().size(), 1u);

@@ -228,7 +228,9 @@ std::vector<StampedPose> MappingSession::Poses() const {
   std::vector<StampedPose> out;
   out.reserve(state_.poses.size());
   for (const SessionPose& p : state_.poses)
-    out.push_back({p.utime, p.scan_index >= 0 ? mapper_.scans()[static_cast<size_t>(p.scan_index)].pose : p.pose});
+    out.push_back(p.scan_index >= 0
+                      ? StampedPose{p.utime, mapper_.scans()[static_cast<size_t>(p.scan_index)].pose, PoseStatus::kInserted}
+                      : StampedPose{p.utime, p.pose, PoseStatus::kTracked});
   return out;
 }
 

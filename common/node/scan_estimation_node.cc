@@ -17,7 +17,7 @@ namespace minenav {
 
 void DeclareScanEstimationOptions(ConfigSchema& s, ScanEstimationOptions* o,
                                   const std::vector<std::string>& initial_choices, const std::string& source) {
-  s.AddString("poses_out", &o->poses_out, "batch: write one pose per scan to this CSV (utime,x,y,theta)");
+  s.AddString("poses_out", &o->poses_out, "batch: write one pose per scan to this CSV (utime,x,y,theta,status)");
   s.AddString("initial", &o->initial,
               "initial estimate: odometry (the odometry pose at the scan's utime), chained (the last "
               "converged estimate moved by odometry since), auto (batch: odometry stamped exactly with "
@@ -109,8 +109,10 @@ void ScanEstimationNode::Answer(const LadarScan& scan, const Pose2& initial, con
     MINENAV_LOG(kDebug) << "scan " << scan.scan_id << ": " << e.status;
     runtime_.SetStatus(heartbeat_t::WARN, "last scan: " + e.status);
   }
-  // The poses file holds the estimate when it converged, else the initial estimate.
-  poses_.push_back({scan.utime, e.converged ? e.pose : initial});
+  // The poses file holds the estimate when it converged, else the initial estimate marked
+  // not_converged (a scorer leaves it out: it is no estimate).
+  poses_.push_back({scan.utime, e.converged ? e.pose : initial,
+                    e.converged ? PoseStatus::kEstimated : PoseStatus::kNotConverged});
 }
 
 void ScanEstimationNode::Finish() {

@@ -30,7 +30,7 @@
 namespace minenav {
 
 struct ScanEstimationOptions {
-  std::string poses_out;           // batch: one pose per scan (utime,x,y,theta) at the end
+  std::string poses_out;           // batch: one pose per scan (utime,x,y,theta,status) at the end
   // odometry: the odometry pose at the scan's utime; chained: the last converged estimate
   // moved by the odometry since; auto: in batch an odometry reading stamped exactly with
   // the scan's utime is its initial estimate (offline surveys), otherwise chained.

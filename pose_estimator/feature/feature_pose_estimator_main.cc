@@ -3,7 +3,7 @@
 // Live: subscribes LADAR_SCAN, ODOMETRY and the map (--map FILE, or line_map_t on
 // LINE_MAP), publishes one pose_estimate_t on POSE_FPE per scan and a HEARTBEAT.
 // Batch (--log IN.lcm): reads the same channels from the log as fast as it can;
-// --poses-out EST.csv writes one pose per LADAR_SCAN (utime,x,y,theta), the contract of
+// --poses-out EST.csv writes one pose per LADAR_SCAN (utime,x,y,theta,status), the contract of
 // the iconic estimator's batch mode.
 //
 // Initial estimate of a scan: the ODOMETRY reading with the scan's utime (interpolated

@@ -66,18 +66,22 @@ TEST(FeaturePoseEstimatorProcess, BatchOverALogWritesOnePosePerScan) {
   EXPECT_NE(r.output.find("1 bad"), std::string::npos) << r.output;
   const std::vector<StampedPose> est = LoadPosesCsv(dir / "est.csv");
   ASSERT_EQ(est.size(), truth.size());
-  // A converged scan gets its estimate, the others their initial estimate (odometry).
-  int accurate = 0;
+  // A converged scan gets its estimate (status estimated), the others their initial estimate
+  // (odometry) marked not_converged (issue 18: a reader can tell them apart).
+  int accurate = 0, marked_estimated = 0;
   for (size_t k = 0; k < est.size(); ++k) {
     EXPECT_EQ(est[k].utime, truth[k].utime);
     const bool good = TranslationDistance(est[k].pose, truth[k].pose) < 0.05 &&
                       HeadingDistance(est[k].pose, truth[k].pose) < DegToRad(0.5);
     accurate += good;
+    marked_estimated += est[k].status == PoseStatus::kEstimated;
     if (!good) {
       EXPECT_LT(TranslationDistance(est[k].pose, odometry[k].pose), 1e-6) << "scan " << k;
+      EXPECT_EQ(est[k].status, PoseStatus::kNotConverged) << "scan " << k;
     }
   }
   EXPECT_GE(accurate, 7);
+  EXPECT_EQ(marked_estimated, accurate);
   EXPECT_NE(r.output.find(std::to_string(accurate) + " converged"), std::string::npos) << r.output;
 }
 

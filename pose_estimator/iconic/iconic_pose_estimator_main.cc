@@ -2,7 +2,8 @@
 //
 // Batch (--log IN.lcm): reads LADAR_SCAN and ODOMETRY (and LINE_MAP / CONTOUR_MAP) from
 // the log as fast as it can and, with --poses-out EST.csv, writes one pose per scan
-// (utime,x,y,theta): the estimate when it converged, else the initial estimate.
+// (utime,x,y,theta,status): the estimate when it converged, else the initial estimate marked
+// not_converged.
 //   iconic_pose_estimator --log IN.lcm [--map MAP.json] --mode MODE --poses-out EST.csv
 // Live (no --log): subscribes LADAR_SCAN, ODOMETRY and a map (--map FILE, line_map_t on
 // LINE_MAP or contour_map_t on CONTOUR_MAP), publishes pose_estimate_t on POSE_IPE per

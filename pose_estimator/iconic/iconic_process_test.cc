@@ -144,7 +144,10 @@ TEST(IconicProcessTest, ScansThatMatchNothingAreReportedNotFatal) {
     EXPECT_FALSE(e.msg.converged);
     EXPECT_NE(e.msg.status.find("points within"), std::string::npos) << e.msg.status;
   }
-  EXPECT_EQ(LoadPosesCsv(dir / "est.csv").size(), 6u);  // initial estimates, one per scan
+  // Initial estimates, one per scan, each marked as no estimate (issue 18).
+  const std::vector<StampedPose> est = LoadPosesCsv(dir / "est.csv");
+  EXPECT_EQ(est.size(), 6u);
+  for (const StampedPose& p : est) EXPECT_EQ(p.status, PoseStatus::kNotConverged) << p.utime;
 }
 
 // Issue 12: the estimator's options nested (match.*, correspondence.*, ...); the flat flags
