@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The whole fleet under load: the README's main job (scripts/run_demo.sh: fleet/mission.fleet
-# under the supervisor, in a private network namespace, lcm-logger recording every message)
+# under the supervisor, in a private network namespace, log_tool record recording every message)
 # for --duration seconds, then Ctrl-C (SIGINT to the supervisor: it stops the fleet in order
 # and the report is still written). Measures:
 #

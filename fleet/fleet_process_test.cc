@@ -139,7 +139,7 @@ TEST(FleetCli, TheMissionFleetFileChecksWithTheDemosVariables) {
                                "SEED=7", "TRAM_SPEED=1.0", "START_POSE=3,3,90deg", "FACE=5,3,0"},
                               dir / "out.txt", 10);
   ASSERT_EQ(run.exit_code, 0) << run.output;
-  for (const char* process : {"lcm_logger", "vehicle_sim", "ladar_driver", "contour_mapper", "path_planner",
+  for (const char* process : {"recorder", "vehicle_sim", "ladar_driver", "contour_mapper", "path_planner",
                               "path_tracker", "cutter", "task_planner", "coordinator"})
     EXPECT_EQ(LinesContaining(run.output, std::string(process) + " ").size() >= 1, true) << process << "\n" << run.output;
   EXPECT_NE(run.output.find("--vehicle.max-forward-speed 1.0"), std::string::npos) << run.output;

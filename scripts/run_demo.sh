@@ -9,7 +9,7 @@
 # into a crosscut needs more than 6 m, planner/README.md) and runs the mission's fleet
 # (fleet/mission.fleet, under the fleet supervisor, in a private network namespace: nothing
 # leaves this machine): vehicle_sim, ladar_driver, the live contour_mapper, path_planner,
-# path_tracker, cutter, task_planner, the coordinator, and lcm-logger recording every message.
+# path_tracker, cutter, task_planner, the coordinator, and log_tool record recording every message.
 # With nothing known in advance but the start pose, the miner explores the section (the
 # contour map grows live; the task planner chooses each scan station; the vehicle is driven
 # closed-loop on the mapper's estimate, never on the truth), then advances the entry whose face
@@ -17,7 +17,7 @@
 # bolter. A progress line per change of the mission's state; Ctrl-C stops the fleet and still
 # writes the report of what was done. Leaves in DIR (default out/mission-<UTC time>):
 #
-#   mission.lcm           the log of every message (lcm-logger)
+#   mission.lcm           the log of every message (log_tool record)
 #   mine.json             the true section at the start
 #   contour_map.json      the live contour map (and the mapper's checkpoint mapper.ckpt)
 #   contour_map_batch.json the map rebuilt from the log by the batch mapper (same policy)
@@ -36,7 +36,7 @@
 #
 # --two-hosts: the fleet split as on a real machine: the `vehicle` group (vehicle_sim,
 # ladar_driver, contour_mapper, path_tracker, cutter) in one network namespace, the `base`
-# group (lcm-logger, path_planner, task_planner, coordinator) in another, joined only by a veth
+# group (recorder, path_planner, task_planner, coordinator) in another, joined only by a veth
 # pair with ttl=1 (tests/bus/two_hosts.sh); each under its own supervisor; the vehicle's stops
 # when the base's mission has ended. fleet_vehicle.log and fleet_base.log hold their tables.
 # --kill NAME@SECONDS (repeatable): a fault: kill -9 the process NAME that many seconds into the
@@ -84,7 +84,7 @@ number='^[0-9]+([.][0-9]+)?$'
 [[ "$port" =~ ^[0-9]+$ && "$port" -ge 1024 && "$port" -le 65535 ]] ||
   { echo "run_demo.sh: --port must be a UDP port from 1024 to 65535" >&2; exit 2; }
 programs=(vehicle_sim ladar_driver contour_mapper path_planner path_tracker cutter task_planner coordinator)
-processes=("${programs[@]}" lcm_logger)  # --kill names: the fleet file's processes
+processes=("${programs[@]}" recorder)  # --kill names: the fleet file's processes
 for k in "${kills[@]}"; do
   [[ "$k" =~ ^([a-z_]+)@([0-9]+([.][0-9]+)?)$ ]] && [[ " ${processes[*]} " == *" ${BASH_REMATCH[1]} "* ]] ||
     { echo "run_demo.sh: --kill takes NAME@SECONDS with NAME one of: ${processes[*]} (got '$k')" >&2; exit 2; }
@@ -161,7 +161,7 @@ supervise="$out/.supervise.sh"
     group="$(awk -v p="[process $name]" '$0 == p { on = 1; next } /^\[/ { on = 0 } on && $1 == "group" { print $3 }' \
              "$MINENAV_ROOT/fleet/mission.fleet")"
     echo "if [ \"\$groups\" = all ] || [ \"\$groups\" = $group ]; then"
-    program="$name"; [ "$name" = lcm_logger ] && program=lcm-logger  # the fleet's name, the program's
+    program="$name"; [ "$name" = recorder ] && program=log_tool  # the fleet's name, the program's
     echo "  (sleep $at; pkill -9 -P \$f -x $program && echo \"== fault: kill -9 $name, $at s into the mission\") &"
     echo "fi"
   done
@@ -205,8 +205,8 @@ case $status in
   *) echo "== the fleet ended with exit code $status (see $out/fleet.log and $out/coordinator.log)" ;;
 esac
 
-# The logger's parts (lcm-logger -i, or log_tool record --parts, whose killed part is left as
-# .NN.partial: a logger restarted after a crash writes the next one) as one log, in order; a part torn by its
+# The recorder's parts (log_tool record --parts; a killed part is left as .NN.partial, and the
+# recorder restarted after a crash writes the next one) as one log, in order; a part torn by its
 # writer's death keeps its whole events (log_tool join).
 parts=("$out"/mission.lcm.[0-9][0-9]*)
 if [ -e "${parts[0]}" ]; then
