@@ -71,9 +71,13 @@ minenav_build() {
   while [ $# -gt 0 ] && [ "$1" != "--" ]; do args+=("$1"); shift; done
   [ "${1:-}" = "--" ] && { shift; targets=("$@"); }
   cmake -S "$MINENAV_ROOT" -B "$dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo "${args[@]}" >/dev/null
+  # MINENAV_NICE=N in the environment: the compile at that nice level (scripts/test.sh: the
+  # sanitizer build beside the mission test).
+  local nice_cmd=()
+  [ -n "${MINENAV_NICE:-}" ] && nice_cmd=(nice -n "$MINENAV_NICE")
   if [ ${#targets[@]} -eq 0 ]; then
-    cmake --build "$dir" -j "$MINENAV_JOBS"
+    "${nice_cmd[@]}" cmake --build "$dir" -j "$MINENAV_JOBS"
   else
-    cmake --build "$dir" -j "$MINENAV_JOBS" --target "${targets[@]}"
+    "${nice_cmd[@]}" cmake --build "$dir" -j "$MINENAV_JOBS" --target "${targets[@]}"
   fi
 }
