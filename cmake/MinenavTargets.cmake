@@ -62,19 +62,26 @@ function(minenav_sanitized_test_at_o0 target)
   endforeach()
 endfunction()
 
+# minenav_test_program(name source...): a test program that CMake files register with their own
+# add_test (bus and process tests: a private network namespace, a port, a filter): tests/ as its
+# folder, the warnings, and its *_test.cc at -O0 under the sanitizers, as minenav_test's.
+function(minenav_test_program name)
+  add_executable(${name} ${ARGN})
+  target_include_directories(${name} PRIVATE "${CMAKE_SOURCE_DIR}")
+  minenav_warnings(${name})
+  minenav_sanitized_test_at_o0(${name})
+  set_target_properties(${name} PROPERTIES RUNTIME_OUTPUT_DIRECTORY "${CMAKE_BINARY_DIR}/tests")
+endfunction()
+
 # minenav_test(NAME name SOURCES ... LIBS ... [LABELS ...] [NO_LCM])
 # A GoogleTest binary registered with CTest, one CTest test per TEST().
 function(minenav_test)
   cmake_parse_arguments(ARG "NO_LCM" "NAME;TIMEOUT" "SOURCES;LIBS;LABELS" ${ARGN})
-  add_executable(${ARG_NAME} ${ARG_SOURCES})
-  target_include_directories(${ARG_NAME} PRIVATE "${CMAKE_SOURCE_DIR}")
+  minenav_test_program(${ARG_NAME} ${ARG_SOURCES})
   if(ARG_NO_LCM)
     target_include_directories(${ARG_NAME} BEFORE PRIVATE ${MINENAV_NO_LCM_DIRS})
   endif()
   target_link_libraries(${ARG_NAME} PRIVATE ${ARG_LIBS} GTest::gtest_main GTest::gmock)
-  minenav_warnings(${ARG_NAME})
-  minenav_sanitized_test_at_o0(${ARG_NAME})
-  set_target_properties(${ARG_NAME} PROPERTIES RUNTIME_OUTPUT_DIRECTORY "${CMAKE_BINARY_DIR}/tests")
   if(NOT ARG_TIMEOUT)
     set(ARG_TIMEOUT 300)
   endif()

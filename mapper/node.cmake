@@ -38,14 +38,10 @@ endif()
 
 # The live process on a real bus, in a private network namespace (tests/bus/private_net.sh).
 if(EXISTS "${CMAKE_SOURCE_DIR}/tests/child_process.cc")
-  add_executable(contour_mapper_live_test
+  minenav_test_program(contour_mapper_live_test
     ${CMAKE_CURRENT_LIST_DIR}/contour_mapper_live_test.cc "${CMAKE_SOURCE_DIR}/tests/child_process.cc")
-  target_include_directories(contour_mapper_live_test PRIVATE "${CMAKE_SOURCE_DIR}")
   target_link_libraries(contour_mapper_live_test PRIVATE minenav_mapping_session minenav_node minenav_child_process
                         GTest::gtest_main)
-  minenav_warnings(contour_mapper_live_test)
-  minenav_sanitized_test_at_o0(contour_mapper_live_test)
-  set_target_properties(contour_mapper_live_test PROPERTIES RUNTIME_OUTPUT_DIRECTORY "${CMAKE_BINARY_DIR}/tests")
   target_compile_definitions(contour_mapper_live_test PRIVATE
     MINENAV_CONTOUR_MAPPER_BIN="$<TARGET_FILE:contour_mapper>" MINENAV_LOG_TOOL_BIN="$<TARGET_FILE:log_tool>")
   add_dependencies(contour_mapper_live_test contour_mapper log_tool)
@@ -57,14 +53,10 @@ endif()
 # The live process fed faster than it maps (issue 11): a bounded queue that counts its drops,
 # and a stop with a backlog that exits at once. Each test on its own port.
 if(EXISTS "${CMAKE_SOURCE_DIR}/tests/child_process.cc")
-  add_executable(contour_mapper_live_stop_test
+  minenav_test_program(contour_mapper_live_stop_test
     ${CMAKE_CURRENT_LIST_DIR}/contour_mapper_live_stop_test.cc "${CMAKE_SOURCE_DIR}/tests/child_process.cc")
-  target_include_directories(contour_mapper_live_stop_test PRIVATE "${CMAKE_SOURCE_DIR}")
   target_link_libraries(contour_mapper_live_stop_test PRIVATE minenav_mapping_session minenav_node minenav_child_process
                         GTest::gtest_main)
-  minenav_warnings(contour_mapper_live_stop_test)
-  minenav_sanitized_test_at_o0(contour_mapper_live_stop_test)
-  set_target_properties(contour_mapper_live_stop_test PROPERTIES RUNTIME_OUTPUT_DIRECTORY "${CMAKE_BINARY_DIR}/tests")
   target_compile_definitions(contour_mapper_live_stop_test PRIVATE
     MINENAV_CONTOUR_MAPPER_BIN="$<TARGET_FILE:contour_mapper>")
   add_dependencies(contour_mapper_live_stop_test contour_mapper)

@@ -29,15 +29,11 @@ endif()
 # Live on the bus (tests/bus/private_net.sh, port 7820): vehicle_sim + ladar_driver +
 # contour_mapper + cutter.
 if(TARGET vehicle_sim AND TARGET ladar_driver AND TARGET contour_mapper)
-  add_executable(cutter_bus_test cutter_bus_test.cc)
-  target_include_directories(cutter_bus_test PRIVATE "${CMAKE_SOURCE_DIR}")
+  minenav_test_program(cutter_bus_test cutter_bus_test.cc)
   target_link_libraries(cutter_bus_test PRIVATE minenav_test_support minenav_node GTest::gtest_main)
   target_compile_definitions(cutter_bus_test PRIVATE
     MINENAV_VEHICLE_SIM_BIN="$<TARGET_FILE:vehicle_sim>" MINENAV_LADAR_DRIVER_BIN="$<TARGET_FILE:ladar_driver>"
     MINENAV_CONTOUR_MAPPER_BIN="$<TARGET_FILE:contour_mapper>" MINENAV_CUTTER_BIN="$<TARGET_FILE:cutter>")
-  minenav_warnings(cutter_bus_test)
-  minenav_sanitized_test_at_o0(cutter_bus_test)
-  set_target_properties(cutter_bus_test PROPERTIES RUNTIME_OUTPUT_DIRECTORY "${CMAKE_BINARY_DIR}/tests")
   add_dependencies(cutter_bus_test vehicle_sim ladar_driver contour_mapper cutter)
   add_test(NAME bus.cutter_box_cut
     COMMAND "${CMAKE_SOURCE_DIR}/tests/bus/private_net.sh" --port 7820 -- $<TARGET_FILE:cutter_bus_test>)

@@ -1,12 +1,8 @@
 # Bus tests: each runs inside its own private network namespace on its own port, through
 # private_net.sh (which fails loudly if the namespace cannot be made).
-add_executable(fleet_test bus/fleet_test.cc)
-target_include_directories(fleet_test PRIVATE "${CMAKE_SOURCE_DIR}")
+minenav_test_program(fleet_test bus/fleet_test.cc)
 target_link_libraries(fleet_test PRIVATE minenav_test_support minenav_node GTest::gtest_main)
 target_compile_definitions(fleet_test PRIVATE ${MINENAV_PROCESS_DEFS})
-minenav_warnings(fleet_test)
-minenav_sanitized_test_at_o0(fleet_test)
-set_target_properties(fleet_test PROPERTIES RUNTIME_OUTPUT_DIRECTORY "${CMAKE_BINARY_DIR}/tests")
 add_dependencies(fleet_test vehicle_sim ladar_driver)
 
 set(MINENAV_PRIVATE_NET "${CMAKE_CURRENT_SOURCE_DIR}/bus/private_net.sh")
@@ -29,13 +25,9 @@ set_tests_properties(bus.refuses_host_network PROPERTIES
   PASS_REGULAR_EXPRESSION "must run inside tests/bus/private_net.sh.*FAILED  \\] 1 test" LABELS bus)
 
 # Issue 11: vehicle_sim's own stale limit caps a command's timeout (port 7790).
-add_executable(vehicle_safety_bus_test bus/vehicle_safety_bus_test.cc)
-target_include_directories(vehicle_safety_bus_test PRIVATE "${CMAKE_SOURCE_DIR}")
+minenav_test_program(vehicle_safety_bus_test bus/vehicle_safety_bus_test.cc)
 target_link_libraries(vehicle_safety_bus_test PRIVATE minenav_test_support minenav_node GTest::gtest_main)
 target_compile_definitions(vehicle_safety_bus_test PRIVATE ${MINENAV_PROCESS_DEFS})
-minenav_warnings(vehicle_safety_bus_test)
-minenav_sanitized_test_at_o0(vehicle_safety_bus_test)
-set_target_properties(vehicle_safety_bus_test PROPERTIES RUNTIME_OUTPUT_DIRECTORY "${CMAKE_BINARY_DIR}/tests")
 add_dependencies(vehicle_safety_bus_test vehicle_sim)
 add_test(NAME bus.vehicle_stops_at_its_stale_limit
   COMMAND "${MINENAV_PRIVATE_NET}" --port 7790 -- $<TARGET_FILE:vehicle_safety_bus_test>
@@ -53,16 +45,12 @@ set_tests_properties(bus.vehicle_stops_within_200ms_of_a_loss PROPERTIES TIMEOUT
 # the live contour_mapper and iconic_pose_estimator, each under a memory bound
 # (bus/hostile_input_bus_test.cc; minenav_hostile_support is defined in tests/CMakeLists.txt).
 if(TARGET contour_mapper AND TARGET iconic_pose_estimator AND TARGET log_tool)
-  add_executable(hostile_input_bus_test bus/hostile_input_bus_test.cc)
-  target_include_directories(hostile_input_bus_test PRIVATE "${CMAKE_SOURCE_DIR}")
+  minenav_test_program(hostile_input_bus_test bus/hostile_input_bus_test.cc)
   target_link_libraries(hostile_input_bus_test PRIVATE minenav_hostile_support minenav_mapper minenav_node
                         GTest::gtest_main)
   target_compile_definitions(hostile_input_bus_test PRIVATE
     MINENAV_CONTOUR_MAPPER_BIN="$<TARGET_FILE:contour_mapper>"
     MINENAV_IPE_BIN="$<TARGET_FILE:iconic_pose_estimator>")
-  minenav_warnings(hostile_input_bus_test)
-  minenav_sanitized_test_at_o0(hostile_input_bus_test)
-  set_target_properties(hostile_input_bus_test PROPERTIES RUNTIME_OUTPUT_DIRECTORY "${CMAKE_BINARY_DIR}/tests")
   add_dependencies(hostile_input_bus_test contour_mapper iconic_pose_estimator)
   function(minenav_hostile_bus_test name port filter)
     add_test(NAME ${name}
@@ -80,8 +68,7 @@ endif()
 # contour_mapper + path_planner + path_tracker + survey_client), then path_planner live on the
 # contour map the mapper built, checked against the true world.
 if(TARGET contour_mapper AND TARGET path_planner AND TARGET path_tracker AND TARGET survey_client)
-  add_executable(planner_live_bus_test bus/planner_live_bus_test.cc)
-  target_include_directories(planner_live_bus_test PRIVATE "${CMAKE_SOURCE_DIR}")
+  minenav_test_program(planner_live_bus_test bus/planner_live_bus_test.cc)
   target_link_libraries(planner_live_bus_test PRIVATE minenav_test_support minenav_node minenav_sim
                         minenav_planner_path_checker GTest::gtest_main)
   target_compile_definitions(planner_live_bus_test PRIVATE ${MINENAV_PROCESS_DEFS}
@@ -89,9 +76,6 @@ if(TARGET contour_mapper AND TARGET path_planner AND TARGET path_tracker AND TAR
     MINENAV_PATH_PLANNER_BIN="$<TARGET_FILE:path_planner>"
     MINENAV_PATH_TRACKER_BIN="$<TARGET_FILE:path_tracker>"
     MINENAV_SURVEY_CLIENT_BIN="$<TARGET_FILE:survey_client>")
-  minenav_warnings(planner_live_bus_test)
-  minenav_sanitized_test_at_o0(planner_live_bus_test)
-  set_target_properties(planner_live_bus_test PROPERTIES RUNTIME_OUTPUT_DIRECTORY "${CMAKE_BINARY_DIR}/tests")
   add_dependencies(planner_live_bus_test vehicle_sim ladar_driver contour_mapper path_planner path_tracker survey_client)
   add_test(NAME bus.planner_on_the_live_contour_map
     COMMAND "${MINENAV_PRIVATE_NET}" --port 7800 -- $<TARGET_FILE:planner_live_bus_test>)
@@ -135,14 +119,10 @@ target_include_directories(command_attacker PRIVATE "${CMAKE_SOURCE_DIR}")
 target_link_libraries(command_attacker PRIVATE minenav_node)
 minenav_warnings(command_attacker)
 set_target_properties(command_attacker PROPERTIES RUNTIME_OUTPUT_DIRECTORY "${CMAKE_BINARY_DIR}/bin")
-add_executable(command_auth_bus_test bus/command_auth_bus_test.cc)
-target_include_directories(command_auth_bus_test PRIVATE "${CMAKE_SOURCE_DIR}")
+minenav_test_program(command_auth_bus_test bus/command_auth_bus_test.cc)
 target_link_libraries(command_auth_bus_test PRIVATE minenav_test_support minenav_node GTest::gtest_main)
 target_compile_definitions(command_auth_bus_test PRIVATE ${MINENAV_PROCESS_DEFS}
   MINENAV_COMMAND_ATTACKER_BIN="$<TARGET_FILE:command_attacker>")
-minenav_warnings(command_auth_bus_test)
-minenav_sanitized_test_at_o0(command_auth_bus_test)
-set_target_properties(command_auth_bus_test PROPERTIES RUNTIME_OUTPUT_DIRECTORY "${CMAKE_BINARY_DIR}/tests")
 add_dependencies(command_auth_bus_test vehicle_sim command_attacker)
 add_test(NAME bus.command_auth
   COMMAND "${MINENAV_PRIVATE_NET}" --port 7930 -- $<TARGET_FILE:command_auth_bus_test>
