@@ -58,16 +58,16 @@ mission_start() {
   # fleet with it (the EXIT trap).
   (cd "$dir" && exec setsid ctest --output-on-failure -L mission --timeout 1200 >"$mission_out" 2>&1) &
   mission_pid=$!
-  mission_started=$SECONDS
   trap 'exit 130' INT TERM
   trap '[ -n "${mission_pid:-}" ] && kill -- "-$mission_pid" 2>/dev/null' EXIT
 }
 mission_wait() {
-  local status=0
+  local status=0 waiting=$SECONDS
   wait "$mission_pid" || status=$?
   mission_pid=""
   cat "$mission_out"
-  echo "== [mission] took $((SECONDS - mission_started)) s (${SECONDS} s since the start)"
+  echo "== [mission] ended: the run waited $((SECONDS - waiting)) s for it after the build beside it" \
+       "(its own time: ctest's line above; ${SECONDS} s since the start)"
   [ $status -eq 0 ] || { echo "== [mission] FAILED (exit $status)"; exit 1; }
 }
 
