@@ -8,13 +8,29 @@ namespace minenav {
 
 namespace {
 
+// Beyond these a value is absurd, and refused like a non-finite one: finite but huge numbers
+// overflow the arithmetic downstream (fuzz.contour_mapper.small: an ODOMETRY pose at y = 9e170
+// made the mapper publish a contour map with non-finite points). No vehicle's frame is larger
+// than kMaxAbsCoordinate (the segment index's StaticSegmentIndex::kMaxCoordinate); unwrapped
+// headings accumulate turns, 1e6 rad is 160,000 of them; no vehicle moves at 1 km/s.
+constexpr double kMaxAbsCoordinate = 1e12;  // m
+constexpr double kMaxAbsHeading = 1e6;      // rad
+constexpr double kMaxAbsRate = 1e3;         // m/s and rad/s
+
 void CheckFinite(double v, const char* field, const char* type) {
   if (!std::isfinite(v)) throw InputError(std::string(type) + "." + field + " is not finite");
+}
+
+void CheckRate(double v, const char* field, const char* type) {
+  CheckFinite(v, field, type);
+  if (std::abs(v) > kMaxAbsRate) throw InputError(std::string(type) + "." + field + " is absurd (beyond 1e3)");
 }
 
 void CheckPose(const pose2d_t& p, const char* field, const char* type) {
   if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.theta))
     throw InputError(std::string(type) + "." + field + " is not finite");
+  if (std::abs(p.x) > kMaxAbsCoordinate || std::abs(p.y) > kMaxAbsCoordinate || std::abs(p.theta) > kMaxAbsHeading)
+    throw InputError(std::string(type) + "." + field + " is absurd (beyond 1e12 m or 1e6 rad)");
 }
 
 Eigen::Matrix3d CovarianceFrom(const double (&c)[9]) {
@@ -100,8 +116,8 @@ odometry_t ToLcm(const OdometryReading& o) {
 
 OdometryReading FromLcm(const odometry_t& m) {
   CheckPose(m.pose, "pose", "odometry_t");
-  CheckFinite(m.v, "v", "odometry_t");
-  CheckFinite(m.omega, "omega", "odometry_t");
+  CheckRate(m.v, "v", "odometry_t");
+  CheckRate(m.omega, "omega", "odometry_t");
   OdometryReading o;
   o.utime = m.utime;
   o.seq = m.seq;
@@ -141,8 +157,8 @@ drive_command_t ToLcm(const DriveCommand& c) {
 DriveCommand FromLcm(const drive_command_t& m) {
   if (m.mode < drive_command_t::STOP || m.mode > drive_command_t::TURN_IN_PLACE)
     throw InputError("drive_command_t.mode " + std::to_string(m.mode) + " is unknown");
-  CheckFinite(m.v, "v", "drive_command_t");
-  CheckFinite(m.omega, "omega", "drive_command_t");
+  CheckRate(m.v, "v", "drive_command_t");
+  CheckRate(m.omega, "omega", "drive_command_t");
   if (!std::isfinite(m.timeout) || m.timeout < 0) throw InputError("drive_command_t.timeout must be >= 0");
   DriveCommand c;
   c.utime = m.utime;
