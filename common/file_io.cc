@@ -250,6 +250,10 @@ const char* PoseStatusName(PoseStatus status) {
 
 bool IsEstimate(PoseStatus status) { return status != PoseStatus::kNotConverged; }
 
+PoseStatus EstimatorPoseStatus(bool converged) {
+  return converged ? PoseStatus::kEstimated : PoseStatus::kNotConverged;
+}
+
 namespace {
 
 PoseStatus ParsePoseStatus(const std::string& text, const std::string& where) {

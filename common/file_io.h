@@ -62,6 +62,8 @@ enum class PoseStatus {
 const char* PoseStatusName(PoseStatus status);
 // False only for kNotConverged.
 bool IsEstimate(PoseStatus status);
+// An estimator's row: kEstimated when its match converged, else kNotConverged.
+PoseStatus EstimatorPoseStatus(bool converged);
 
 // Poses CSV, header utime,x,y,theta,status (or utime,x,y,theta: every row estimated): one row
 // per scan, theta in radians.

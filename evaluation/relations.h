@@ -76,8 +76,9 @@ struct RelationScore {
 };
 
 // Scores `estimates` (any order; robot poses keyed by utime, e.g. a poses CSV; rows whose
-// status is not an estimate are left out and counted) against `relations`. `odometry` (any order; may be empty) corrects estimates farther than
-// max_time_gap from a relation time. Never throws for bad data: an empty result says why.
+// status is not an estimate are left out and counted) against `relations`. `odometry` (any
+// order; may be empty) corrects estimates farther than max_time_gap from a relation time.
+// Never throws for bad data: an empty result says why.
 RelationScore ScoreRelations(const std::vector<Relation>& relations, const std::vector<StampedPose>& estimates,
                              const std::vector<StampedPose>& odometry, const RelationOptions& options = {});
 

@@ -41,7 +41,7 @@ std::vector<StampedPose> PosesFromLcmLog(const std::string& path, const std::str
         poses.push_back({r.utime, r.pose});
       } else if (DecodeMessage(e->data.data(), size, channel, &est, &error)) {
         const PoseEstimate r = FromLcm(est);
-        poses.push_back({r.utime, r.pose, r.converged ? PoseStatus::kEstimated : PoseStatus::kNotConverged});
+        poses.push_back({r.utime, r.pose, EstimatorPoseStatus(r.converged)});
       } else if (DecodeMessage(e->data.data(), size, channel, &truth, &error)) {
         const TruthReading r = FromLcm(truth);
         poses.push_back({r.utime, r.pose});

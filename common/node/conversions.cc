@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "common/file_io.h"
+#include "common/segment_index.h"
 
 namespace minenav {
 
@@ -10,11 +11,11 @@ namespace {
 
 // Beyond these a value is absurd, and refused like a non-finite one: finite but huge numbers
 // overflow the arithmetic downstream (fuzz.contour_mapper.small: an ODOMETRY pose at y = 9e170
-// made the mapper publish a contour map with non-finite points). No vehicle's frame is larger
-// than kMaxAbsCoordinate (the segment index's StaticSegmentIndex::kMaxCoordinate); unwrapped
+// made the mapper publish a contour map with non-finite points). A coordinate is absurd where
+// the segment index stops listing it (StaticSegmentIndex::kMaxCoordinate, 1e12 m); unwrapped
 // headings accumulate turns, 1e6 rad is 160,000 of them; no vehicle moves at 1 km/s.
-constexpr double kMaxAbsCoordinate = 1e12;  // m
-constexpr double kMaxAbsHeading = 1e6;      // rad
+constexpr double kMaxAbsCoordinate = StaticSegmentIndex::kMaxCoordinate;  // m
+constexpr double kMaxAbsHeading = 1e6;                                    // rad
 constexpr double kMaxAbsRate = 1e3;         // m/s and rad/s
 
 void CheckFinite(double v, const char* field, const char* type) {

@@ -111,8 +111,7 @@ void ScanEstimationNode::Answer(const LadarScan& scan, const Pose2& initial, con
   }
   // The poses file holds the estimate when it converged, else the initial estimate marked
   // not_converged (a scorer leaves it out: it is no estimate).
-  poses_.push_back({scan.utime, e.converged ? e.pose : initial,
-                    e.converged ? PoseStatus::kEstimated : PoseStatus::kNotConverged});
+  poses_.push_back({scan.utime, e.converged ? e.pose : initial, EstimatorPoseStatus(e.converged)});
 }
 
 void ScanEstimationNode::Finish() {
