@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <optional>
 #include <sstream>
 
 #include "common/angle.h"
@@ -223,6 +224,17 @@ AdvanceResult PlanAdvance(const TaskMap& map_in, const Footprint& footprint_in, 
   if (!planner.setup_error().empty()) return fail("path planner: " + planner.setup_error());
   std::unique_ptr<KnownFreeSpace> known;
   if (map.oriented) known = std::make_unique<KnownFreeSpace>(map.AsFreeSpace());
+  // A vehicle within the clearance of a wall (it stopped short where the map grew around it)
+  // leaves with the clearance it has: its first maneuver is checked as the path planner plans
+  // it (never in contact with the map); the others keep the clearance.
+  std::optional<Se2Planner> leaving;
+  if (!planner.PoseFree(r.vehicle))
+    if (const double has = planner.ClearanceFor(r.vehicle); has >= 0.0) {
+      Se2PlannerOptions leaving_options = po;
+      leaving_options.clearance = has;
+      leaving.emplace(map.Boundary(), footprint, leaving_options);
+      result.leaving_clearance = has;
+    }
   SearchLimits leg_limits = limits;
   leg_limits.max_expansions = std::min(limits.max_expansions, o.maneuver_expansions);
   Pose2 from = r.vehicle;
@@ -233,7 +245,8 @@ AdvanceResult PlanAdvance(const TaskMap& map_in, const Footprint& footprint_in, 
     const std::string name = t.description.substr(0, t.description.find(':'));
     if (known && !known->Contains(t.target.translation()))
       return fail(name + ": goal " + PoseText(t.target) + " is not in the known free space");
-    ManeuverCheck check{k, from, t.target, planner.Plan(from, t.target, leg_limits)};
+    const Se2Planner& leg_planner = leaving && result.maneuvers.empty() ? *leaving : planner;
+    ManeuverCheck check{k, from, t.target, leg_planner.Plan(from, t.target, leg_limits)};
     const bool ok = check.result.status == SearchStatus::kFound;
     result.maneuvers.push_back(check);
     if (!ok)
@@ -248,6 +261,9 @@ AdvanceResult PlanAdvance(const TaskMap& map_in, const Footprint& footprint_in, 
                 ", back out to " + FixedNumber(o.bolter_gap) + " m from the new face; face " +
                 FixedNumber(RadToDeg(std::abs(e.face_angle)), 1) + " deg off square; " +
                 std::to_string(result.maneuvers.size()) + " maneuvers checked (" + lengths.str() + " m)";
+  if (leaving)
+    plan.reason += " (the vehicle stood within " + FixedNumber(r.clearance) + " m of a wall: its first maneuver keeps " +
+                   FixedNumber(*result.leaving_clearance) + " m)";
   return result;
 }
 

@@ -106,6 +106,9 @@ struct AdvanceResult {
   TaskPlan plan;
   std::optional<EntryGeometry> entry;    // when the entry was found
   std::vector<ManeuverCheck> maneuvers;  // the checks made (the last one failed when the plan did)
+  // Set when the vehicle stood within the request's clearance of a wall: the clearance its
+  // first maneuver was checked with (what it has, Se2Planner::ClearanceFor).
+  std::optional<double> leaving_clearance;
 };
 
 AdvanceResult PlanAdvance(const TaskMap& map, const Footprint& footprint, const AdvanceRequest& request,

@@ -368,6 +368,46 @@ TEST(AdvancePlanner, AGoalThePathPlannerCannotReachFailsThePlanWithItsReason) {
   EXPECT_NE(t.plan.reason.find("move into position for the box cut"), std::string::npos) << t.plan.reason;
 }
 
+// The miner stopped short beside the entry's rib, its side 4 cm from it (the map grew around
+// it, the CI mission of 2026-12-03 failed so): the advance is still planned, its first maneuver
+// leaving with the clearance the miner has, never in contact with the walls; the others keep
+// the request's clearance; the reason says so. A miner that touches the rib is refused.
+TEST(AdvancePlanner, AVehicleWithinTheClearanceOfARibLeavesWithTheClearanceItHas) {
+  Entry entry{6.5};
+  entry.jitter = 0.0;
+  const std::vector<Segment> walls = entry.Walls();
+  const double half_width = 0.5 * 3.3;  // Miner()
+  const Pose2 vehicle(entry.length - 20.0, 0.5 * entry.width - half_width - 0.04, 0.0);
+  ASSERT_NEAR(testing::PoseClearance(walls, Miner().vertices, vehicle), 0.04, 1e-9);
+  const AdvanceRequest request = Request(vehicle, {entry.length - 4.0, 0}, 0.0);
+  const AdvanceResult r = PlanAdvance(TaskMapFromSegments(walls), Miner(), request, {}, {});
+  ASSERT_EQ(r.plan.status, PlanStatus::kOk) << r.plan.reason;
+  ASSERT_TRUE(r.leaving_clearance.has_value());
+  EXPECT_GE(*r.leaving_clearance, 0.0);
+  EXPECT_LT(*r.leaving_clearance, 0.04);
+  EXPECT_NE(r.plan.reason.find("(the vehicle stood within 0.10 m of a wall: its first maneuver keeps "),
+            std::string::npos)
+      << r.plan.reason;
+  ASSERT_GE(r.maneuvers.size(), 3u);
+  for (size_t k = 0; k < r.maneuvers.size(); ++k) {
+    const ManeuverCheck& m = r.maneuvers[k];
+    ASSERT_EQ(m.result.status, SearchStatus::kFound) << m.result.reason;
+    const double keep = k == 0 ? *r.leaving_clearance : request.clearance;
+    const auto report = testing::CheckPath(walls, m.start, planner_test::AsChecked(m.result.path),
+                                           planner_test::CheckSettings(Miner().vertices, keep));
+    EXPECT_TRUE(report.ok) << "maneuver " << k << ": " << report.problem;
+  }
+  EXPECT_EQ(r.maneuvers.front().start.translation(), vehicle.translation());
+
+  // Its side 2 cm into the rib: in contact, refused.
+  const Pose2 touching(vehicle.x, vehicle.y + 0.06, 0.0);
+  const AdvanceResult t =
+      PlanAdvance(TaskMapFromSegments(walls), Miner(), Request(touching, {entry.length - 4.0, 0}, 0.0), {}, {});
+  EXPECT_EQ(t.plan.status, PlanStatus::kFailed);
+  EXPECT_FALSE(t.leaving_clearance.has_value());
+  EXPECT_NE(t.plan.reason.find("is in collision"), std::string::npos) << t.plan.reason;
+}
+
 TEST(AdvancePlanner, ARibHuggingBoxCutInADeadEndLeavesNoRoomToReposition) {
   // With 0.1 m beyond the clearance at the rib (0.2 m to spare) the miner cannot turn a
   // heading bin (its far end swings 0.44 m for 5 degrees): it can only back straight out, and
