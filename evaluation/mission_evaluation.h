@@ -74,7 +74,7 @@ struct CutFigures {
   DepthFigures truth;  // final true world against the initial one
   DepthFigures map;    // final contour map against the initial true world
   bool off_request = false;  // |truth median - requested| > cut_tolerance, or no ray measured
-  bool map_off = false;      // the same for the map
+  bool map_off = false;      // |map median - truth median| > cut_tolerance, or no ray measured
   std::string note;          // why it was not measured, when it was not
 };
 // BOX_CUT and SLAB_CUT subtasks measured with rays along target.theta (the direction of advance).

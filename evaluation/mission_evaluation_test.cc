@@ -231,6 +231,19 @@ TEST(CutDepth, CutsAreFlaggedOffTheirRequest) {
   EXPECT_TRUE(cuts[1].off_request);
   EXPECT_TRUE(cuts[2].off_request);
   EXPECT_FALSE(cuts[2].note.empty());
+  // The map is judged against what was cut, not against the request: a cut 4 cm deeper than a
+  // request of 0.76 m (within the tolerance), mapped 2 cm deeper than it was cut (6 cm off the
+  // request), is a map that followed the cut.
+  MissionSubtask near = box;
+  near.depth = 0.76;
+  const std::vector<Segment> map_deeper =
+      Loop({{0, 0}, {20, 0}, {20, 1.5}, {20.82, 1.5}, {20.82, 4.5}, {20, 4.5}, {20, 6}, {0, 6}});
+  const std::vector<CutFigures> followed = MeasureCuts({near}, w.before, w.after, map_deeper, {}, 0.05);
+  ASSERT_EQ(followed.size(), 1u);
+  EXPECT_NEAR(followed[0].truth.median, 0.80, 1e-9);
+  EXPECT_NEAR(followed[0].map.median, 0.82, 1e-9);
+  EXPECT_FALSE(followed[0].off_request);
+  EXPECT_FALSE(followed[0].map_off);
   // Nothing cut: depth 0, flagged.
   const std::vector<CutFigures> none = MeasureCuts({box}, w.before, w.before, w.before, {}, 0.05);
   EXPECT_NEAR(none[0].truth.median, 0.0, 1e-12);
