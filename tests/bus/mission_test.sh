@@ -2,12 +2,12 @@
 # The whole mission in CI (issue 15), shortened: the README's main job (scripts/run_demo.sh)
 # on the one-pillar section with a 0.5 m advance, split across two hosts (vehicle and base
 # station, ttl=1) and with a fault: the path tracker is killed with SIGKILL while the
-# exploration drives. With run_demo.sh --attack (not in CI yet: see common/node/README.md,
-# "Security") an attacker on the vehicle's network publishes replayed, forged, tampered and
-# unsigned copies of every signed command channel, and the checks below include it. Then
+# exploration drives. With --attack (CI gives 50@150: common/node/README.md, "Security") an
+# attacker on the vehicle's network publishes replayed, forged, tampered and unsigned copies
+# of every signed command channel, and the checks below include it. Then
 # judged from what the run leaves, against the true world:
 #
-#   tests/bus/mission_test.sh BIN_DIR PORT [KILL...]
+#   tests/bus/mission_test.sh BIN_DIR PORT [--attack S@LENGTH] [KILL...]
 #
 #   - the coordinator's mission ended DONE (exit 0 of the base's fleet);
 #   - the supervisor restarted each killed process (its table says restarts 1) and the mission
@@ -26,6 +26,11 @@
 set -euo pipefail
 bin="$1" port="$2"
 shift 2
+attack_args=()
+if [ "${1:-}" = "--attack" ]; then
+  attack_args=(--attack "$2")
+  shift 2
+fi
 kills=("$@")
 [ ${#kills[@]} -gt 0 ] || kills=(path_tracker@40)
 here="$(cd "$(dirname "$0")" && pwd)"
@@ -47,7 +52,7 @@ kill_args=()
 for k in "${kills[@]}"; do kill_args+=(--kill "$k"); done
 status=0
 "$root/scripts/run_demo.sh" --bin "$bin" --small --fast 6 --port "$port" --two-hosts "${kill_args[@]}" \
-  --no-batch-map --out "$work/out" > "$work/run.txt" 2>&1 || status=$?
+  "${attack_args[@]}" --no-batch-map --out "$work/out" > "$work/run.txt" 2>&1 || status=$?
 grep -E "^\[(vehicle|base)\] \[ *[0-9]+:[0-9]+\]|== " "$work/run.txt" | tail -n 40
 [ $status -eq 0 ] || { tail -n 30 "$work/run.txt"; fail "run_demo.sh exited $status"; }
 report="$work/out/report.json"
