@@ -49,8 +49,20 @@ double CellSizeWithinBudget(const std::vector<Segment>& segments, double cell, d
   const Eigen::Vector2d extent = (hi - lo).array() + 2.0 * margin;
   // Cells along each side (with the frame's one-cell border), and the cell that fits the budget.
   const double cells = (extent.x() / cell + 3.0) * (extent.y() / cell + 3.0);
-  if (!(cells > kMaxGridCells)) return cell;
-  return std::max(cell, std::sqrt(extent.x() * extent.y() / kMaxGridCells) * 1.01 + 3.0 * cell);
+  if (cells > kMaxGridCells)
+    cell = std::max(cell, std::sqrt(extent.x() * extent.y() / kMaxGridCells) * 1.01 + 3.0 * cell);
+  // The band shrinks with the cell, to 3 cells per segment once the cell passes the margin
+  // and the walls' length: the loop ends.
+  const double band_budget = std::max(kMaxBandCells, 9.0 * static_cast<double>(segments.size()));
+  while (BandCells(segments, cell, margin) > band_budget) cell *= 1.05;
+  return cell;
+}
+
+double BandCells(const std::vector<Segment>& segments, double cell, double margin) {
+  const double across = 2.0 * std::ceil(std::max(0.0, margin) / cell) + 1.0;
+  double along = 0.0;
+  for (const Segment& s : segments) along += std::ceil(s.length() / cell) + 1.0;
+  return along * across;
 }
 
 std::unique_ptr<CorrespondenceSearch> MakeCorrespondenceSearch(std::vector<Segment> segments,

@@ -94,8 +94,20 @@ double ChooseCellSize(const std::vector<Segment>& segments);
 // Most cells a correspondence grid may have (each holds a few candidate lists): bounds the
 // memory one map message can cost (issue 11: one 20 km segment must not allocate GBs).
 inline constexpr double kMaxGridCells = 4e6;
+// Most cells the walls and their reach may cover (the lookup table's grassfire visits each
+// with its lists): bounds the work one map message can cost. A random-seed fuzz run found a
+// LINE_MAP of 11 short walls and one 127 km long that kept the grid within kMaxGridCells at
+// 1 m cells yet grew 890,000 cells: 0.52 s to build in the release build, over 40 s in the
+// fuzz build. 2^17 covers 18 km of wall at 1 m cells (reach 3 m), 5 km at 0.5 m and 1.3 km
+// at 0.25 m: a mine section's map keeps the cell it chose; a larger map gets coarser cells
+// (longer lists, the same answers). That map now costs 0.1 s in the release build.
+inline constexpr double kMaxBandCells = 131072.0;
+// The cells within `margin` of the walls at `cell` m, as the table grows them: per segment
+// the cells along it times the band across it.
+double BandCells(const std::vector<Segment>& segments, double cell, double margin);
 // `cell`, or the smallest larger cell that keeps the grid over `segments` (grown by
-// `margin` m on every side) within kMaxGridCells.
+// `margin` m on every side) within kMaxGridCells and the band within
+// max(kMaxBandCells, 9 per segment) (3 per segment is the least any cell gives).
 double CellSizeWithinBudget(const std::vector<Segment>& segments, double cell, double margin);
 
 // A segment with what every distance query needs precomputed; all three searches use the
