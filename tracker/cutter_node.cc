@@ -146,7 +146,10 @@ void CutterNode::Tick(int64_t now) {
   const bool was_active = cutter_.active();
   Cutter::Output out = cutter_.Update(now, pose_, state_);
   if (out.cutter) Publish(runtime_.bus(), options_.command_channel, ToLcm(*out.cutter));
-  if (out.drive) Publish(runtime_.bus(), options_.drive_channel, ToLcm(*out.drive));
+  if (out.drive) {
+    out.drive->seq = drive_seq_++;
+    Publish(runtime_.bus(), options_.drive_channel, ToLcm(*out.drive));
+  }
   const CutterStatus& st = cutter_.status();
   if (was_active && !cutter_.active()) {
     if (st.state == CutterStatus::State::kDone)

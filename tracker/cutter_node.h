@@ -69,6 +69,9 @@ class CutterNode {
   std::optional<CutterState> state_;
   std::vector<Segment> map_;
   int64_t last_status_at_ = 0;
+  // DRIVE_COMMAND's seq: the cutter's own stream on a channel the tracker also drives (each
+  // publisher numbers its messages, so a receiver or a log reader can count what it missed).
+  int64_t drive_seq_ = 0;
   std::optional<task_status_t> last_status_;  // of the cut under way or the last one
   std::string last_step_;
 };

@@ -127,6 +127,11 @@ TEST(CutterNodeTest, AnAcceptedCutRaisesTheBoomThenSquaresUp) {
   h.Tick();
   h.Tick();
   EXPECT_EQ(h.bus->PublishedOn("DRIVE_COMMAND").size(), n);  // silent when no cut is active
+  // Every DRIVE_COMMAND numbered 0, 1, 2, ... (a log of the mission counted the cutter's 934
+  // commands as all seq 0 before).
+  const auto all = h.bus->Decoded<drive_command_t>("DRIVE_COMMAND");
+  ASSERT_EQ(all.size(), n);
+  for (size_t k = 0; k < all.size(); ++k) EXPECT_EQ(all[k].seq, static_cast<int64_t>(k));
 }
 
 // The coordinator re-sends each task until it is acknowledged: a repeat of the cut under way
