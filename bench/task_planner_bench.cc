@@ -16,7 +16,7 @@
 #include "common/file_io.h"
 #include "planner/advance_planner.h"
 #include "planner/task_plan_svg.h"
-#include "planner/testing/survey_exploration.h"
+#include "sim/testing/survey_exploration.h"
 #include "sim/mine_generator.h"
 
 namespace minenav {

@@ -21,7 +21,7 @@
 #include "planner/task_plan_svg.h"
 #include "planner/test_maps.h"
 #include "planner/testing/path_checker.h"
-#include "planner/testing/survey_exploration.h"
+#include "sim/testing/survey_exploration.h"
 #include "sim/mine_generator.h"
 
 namespace minenav {

@@ -1,4 +1,4 @@
-#include "planner/testing/survey_exploration.h"
+#include "sim/testing/survey_exploration.h"
 
 #include <algorithm>
 
