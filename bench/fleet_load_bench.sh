@@ -11,7 +11,11 @@
 #              series (its own row, marked).
 #   loss       the recorded log (OUT/mission.lcm), per channel: messages, gaps and missing in
 #              seq / scan_id (log_tool info); HEARTBEAT has one seq per process and is
-#              counted per process here.
+#              counted per process here. The signed (command) channels are judged by their
+#              authentication trailers instead: every signing process numbers all its signed
+#              messages in one sequence (common/message_auth.h), so a gap there is a lost
+#              command on any of its channels, whatever the channel's own seq means (two
+#              publishers on DRIVE_COMMAND; CUT_TASK's seq is the coordinator's task id).
 #   UDP        per channel the largest message (bytes) against the receive buffer the fleet
 #              asks for (recv_buf_size=4194304, tests/bus/private_net.sh) and LCM's udpm limits
 #              (one datagram up to 65499 bytes of channel + payload, else 65487-byte
@@ -296,6 +300,10 @@ for c in info["channels"]:
            "out_of_order": c["out_of_order"] if c["sequence_field"] else None,
            "largest_bytes": size, "datagrams": 1 if size <= SHORT_MAX else -(-(size) // FRAG_PAYLOAD),
            "margin": round(buf / size, 1) if size else None}
+    if c.get("signed_senders", 0) > 0 and c.get("unsigned_count", 0) == 0:
+        row["sequence_field"] = "signed: trailer"
+        row["gaps"] = row["missing"] = row["out_of_order"] = None  # judged per sender, below
+        row["signed_senders"] = c["signed_senders"]
     if ch == "HEARTBEAT":
         per = {k[1]: v for k, v in largest.items() if isinstance(k, tuple) and k[0] == "HB"}
         row["per_process"] = {p: {k: v[k] for k in ("count", "gaps", "missing", "ooo")} for p, v in sorted(per.items())}
@@ -320,9 +328,17 @@ for r in loss:
     print(f"{r['channel']:<18} {r['messages']:>9} {r['rate_hz']:>8} {r['sequence_field'] or '-':<16} "
           f"{'-' if r['gaps'] is None else r['gaps']:>5} {'-' if r['missing'] is None else r['missing']:>8} {lp:>7} "
           f"{r['largest_bytes']:>10} {r['datagrams']:>9} {r['margin'] if r['margin'] else '-':>7}")
-total_missing = sum(r["missing"] or 0 for r in loss)
+senders = info.get("senders", [])
+total_missing = sum(r["missing"] or 0 for r in loss) + sum(s["missing"] for s in senders)
 total = sum(r["messages"] for r in loss)
-print(f"{'all':<18} {total:>9} {'':>8} {'':<16} {'':>5} {total_missing:>8}")
+print(f"{'all':<18} {total:>9} {'':>8} {'':<16} {'':>5} {total_missing:>8}   (with the signed senders' below)")
+if senders:
+    print(f"\nsigned senders: one trailer sequence over each process's signed channels (a gap = a command lost on any of them)")
+    print(f"{'sender':<18} {'messages':>9} {'trailer seq':>18} {'gaps':>5} {'missing':>8} {'out of order':>13}  channels")
+    for s in senders:
+        rng = f"{s['first_sequence']} .. {s['last_sequence']}"
+        print(f"{s['sender']:<18} {s['count']:>9} {rng:>18} {s['sequence_gaps']:>5} {s['missing']:>8} {s['out_of_order']:>13}  "
+              + ",".join(s["channels"]))
 hb = [r for r in loss if r["channel"] == "HEARTBEAT"]
 if hb and hb[0].get("per_process"):
     print("HEARTBEAT per process: " + ", ".join(f"{p} {v['count']} ({v['missing']} missing)" for p, v in hb[0]["per_process"].items()))
@@ -347,7 +363,7 @@ for pid, u in sorted(udp.items(), key=lambda kv: pid_name.get(kv[0], "?")):
 if json_out:
     json.dump({"bench": "fleet_load", "duration_s": duration, "run": run, "cores": ncpu, "recv_buf_size": buf,
                "rmem_max": rmem, "lcm_udpm": {"short_message_max": SHORT_MAX, "fragment_payload": FRAG_PAYLOAD},
-               "processes": procs, "channels": loss, "udp": udp_rows}, open(json_out, "w"), indent=1)
+               "processes": procs, "channels": loss, "signed_senders": senders, "udp": udp_rows}, open(json_out, "w"), indent=1)
     print(f"wrote {json_out}")
 PY
 exit 0

@@ -8,11 +8,14 @@
 #include <regex>
 #include <sstream>
 
+#include "common/message_auth.h"
 #include "common/node/conversions.h"
 #include "common/node/event_log.h"
 #include "logger/log_render.h"
 #include "logger/log_summary.h"
 #include "logger/message_catalog.h"
+#include "minenav/cutter_command_t.hpp"
+#include "minenav/drive_command_t.hpp"
 #include "minenav/message_json.hpp"
 #include "logger/run_log.h"
 #include "logger/strict_log_reader.h"
@@ -181,6 +184,81 @@ TEST(LogSummary, FindsGapsInScanIdsAndSeq) {
   EXPECT_EQ(c->out_of_order, 1);
   EXPECT_EQ(*c->first_sequence, 0);
   EXPECT_EQ(*c->last_sequence, 8);
+}
+
+// Two publishers on one channel, each numbering its own commands (the tracker and the cutter
+// on DRIVE_COMMAND), a channel whose seq is not a per-channel counter (CUT_TASK: the
+// coordinator's task ids) and one lost command: the loss is found, once, and the interleaving
+// is not taken for disorder.
+TEST(LogSummary, FollowsEachSendersSequenceOnASharedChannel) {
+  const std::string path = TempPath("signed.lcm");
+  const AuthKeyRing keys{{RandomAuthKey(7)}};
+  MessageSigner tracker(0x1111), cutter(0x2222), coordinator(0x3333);
+  auto drive = [](int64_t seq) {
+    minenav::drive_command_t m{};
+    m.utime = 1000 + seq;
+    m.seq = seq;
+    m.timeout = 0.5;
+    return EncodeMessage(m);
+  };
+  auto cut = [](int64_t task_id) {
+    minenav::cutter_command_t m{};
+    m.utime = 5000 + task_id;
+    m.seq = task_id;
+    return EncodeMessage(m);
+  };
+  {
+    LogWriter w(path);
+    int64_t t = 1;
+    auto write = [&](MessageSigner* signer, const std::string& channel, const std::vector<uint8_t>& payload) {
+      const auto bytes = signer ? signer->Sign(keys, channel, payload.data(), static_cast<int>(payload.size()), t)
+                                : payload;
+      w.Write(channel, t++, bytes.data(), static_cast<int>(bytes.size()));
+    };
+    for (int64_t k = 0; k < 10; ++k) {
+      const auto from_tracker = drive(k);
+      if (k == 6) {  // signed, then lost: the tracker's trailer and its seq skip one
+        tracker.Sign(keys, "DRIVE_COMMAND", from_tracker.data(), static_cast<int>(from_tracker.size()), t);
+      } else {
+        write(&tracker, "DRIVE_COMMAND", from_tracker);
+      }
+      if (k >= 3 && k < 7) write(&cutter, "DRIVE_COMMAND", drive(k - 3));  // its own 0..3
+    }
+    for (const int64_t task : {4, 9, 15}) write(&coordinator, "CUT_TASK", cut(task));
+    write(nullptr, "DRIVE_COMMAND", drive(0));  // an unsigned publisher: a sequence of its own
+    w.Close();
+  }
+  const LogSummary s = SummarizeLog(path);
+  const ChannelSummary* d = Find(s, "DRIVE_COMMAND");
+  ASSERT_NE(d, nullptr);
+  EXPECT_EQ(d->count, 9 + 4 + 1);
+  EXPECT_EQ(d->signed_senders, 2);
+  EXPECT_EQ(d->unsigned_count, 1);
+  EXPECT_EQ(d->sequence_gaps, 1);
+  EXPECT_EQ(d->missing, 1);
+  EXPECT_EQ(d->out_of_order, 0);  // by one sequence it would be 6 (every switch of publisher)
+
+  ASSERT_EQ(s.senders.size(), 3u);  // by first appearance
+  EXPECT_EQ(s.senders[0].sender, 0x1111u);
+  EXPECT_EQ(s.senders[0].count, 9);
+  EXPECT_EQ(*s.senders[0].trailer_seq.first, 1);
+  EXPECT_EQ(*s.senders[0].trailer_seq.last, 10);
+  EXPECT_EQ(s.senders[0].trailer_seq.missing, 1);
+  EXPECT_EQ(s.senders[1].sender, 0x2222u);
+  EXPECT_EQ(s.senders[1].trailer_seq.gaps, 0);
+  EXPECT_EQ(s.senders[1].channels, std::vector<std::string>{"DRIVE_COMMAND"});
+  // CUT_TASK's seq jumps by design; its sender's trailer does not: nothing lost there.
+  EXPECT_EQ(Find(s, "CUT_TASK")->missing, 9 - 4 - 1 + 15 - 9 - 1);
+  EXPECT_EQ(s.senders[2].count, 3);
+  EXPECT_EQ(s.senders[2].trailer_seq.gaps, 0);
+  EXPECT_EQ(s.senders[2].channels, std::vector<std::string>{"CUT_TASK"});
+
+  const std::string table = FormatLogSummary(s);
+  EXPECT_TRUE(std::regex_search(table, std::regex("0000000000001111 +9 +1 \\.\\. 10 +1 +1 +0 +DRIVE_COMMAND\n")))
+      << table;
+  EXPECT_NE(table.find("(3 publishers, each its own sequence)"), std::string::npos) << table;
+  const std::string json = LogSummaryToJson(s);
+  EXPECT_NE(json.find("\"sender\": \"0000000000003333\""), std::string::npos) << json;
 }
 
 TEST(LogSummary, ReportsDecodeErrorsPerChannel) {

@@ -3,14 +3,31 @@
 #include <algorithm>
 #include <iomanip>
 #include <map>
+#include <set>
+#include <tuple>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "common/file_io.h"
+#include "common/message_auth.h"
 #include "logger/strict_log_reader.h"
 #include "logger/message_catalog.h"
 
 namespace minenav {
+
+void SequenceGaps::Add(int64_t n) {
+  if (last) {
+    if (n > *last + 1) {
+      ++gaps;
+      missing += n - *last - 1;
+    } else if (n <= *last) {
+      ++out_of_order;
+    }
+  } else {
+    first = n;
+  }
+  last = n;
+}
 
 int64_t LogSummary::total_decode_errors() const {
   int64_t n = 0;
@@ -24,6 +41,10 @@ LogSummary SummarizeLog(const std::string& path) {
   StrictLogReader reader(path);
   summary.file_bytes = reader.file_size();
   std::map<std::string, ChannelSummary> channels;
+  // One sequence per publisher of a channel: (channel, signed, sender); unsigned: sender 0.
+  std::map<std::tuple<std::string, bool, uint64_t>, SequenceGaps> streams;
+  std::map<uint64_t, size_t> sender_index;  // sender -> summary.senders
+  std::map<uint64_t, std::set<std::string>> sender_channels;
   LogRecord rec;
   while (true) {
     try {
@@ -43,6 +64,21 @@ LogSummary SummarizeLog(const std::string& path) {
     ++c.count;
     c.bytes += static_cast<int64_t>(rec.data.size());
     c.last_timestamp = rec.timestamp;
+    AuthTrailer trailer;
+    const bool is_signed = ParseAuthTrailer(rec.data.data(), static_cast<int>(rec.data.size()), &trailer);
+    if (is_signed) {
+      auto [it, fresh] = sender_index.try_emplace(trailer.sender, summary.senders.size());
+      if (fresh) {
+        summary.senders.emplace_back();
+        summary.senders.back().sender = trailer.sender;
+      }
+      SenderSummary& sender = summary.senders[it->second];
+      ++sender.count;
+      sender.trailer_seq.Add(static_cast<int64_t>(trailer.seq));
+      sender_channels[trailer.sender].insert(rec.channel);
+    } else {
+      ++c.unsigned_count;
+    }
     const MessageProbe probe = ProbeMessage(rec.channel, rec.data.data(), rec.data.size());
     if (c.type.empty()) c.type = probe.type_name;
     if (!probe.ok) {
@@ -57,20 +93,20 @@ LogSummary SummarizeLog(const std::string& path) {
     }
     if (probe.sequence) {
       c.sequence_field = probe.sequence_field;
-      const int64_t s = *probe.sequence;
-      if (c.last_sequence) {
-        const int64_t prev = *c.last_sequence;
-        if (s > prev + 1) {
-          ++c.sequence_gaps;
-          c.missing += s - prev - 1;
-        } else if (s <= prev) {
-          ++c.out_of_order;
-        }
-      } else {
-        c.first_sequence = s;
-      }
-      c.last_sequence = s;
+      if (!c.first_sequence) c.first_sequence = *probe.sequence;
+      c.last_sequence = *probe.sequence;
+      streams[{rec.channel, is_signed, is_signed ? trailer.sender : 0}].Add(*probe.sequence);
     }
+  }
+  for (const auto& [key, gaps] : streams) {
+    ChannelSummary& c = channels[std::get<0>(key)];
+    c.sequence_gaps += gaps.gaps;
+    c.missing += gaps.missing;
+    c.out_of_order += gaps.out_of_order;
+  }
+  for (const auto& [sender, names] : sender_channels) {
+    summary.senders[sender_index[sender]].channels.assign(names.begin(), names.end());
+    for (const std::string& name : names) ++channels[name].signed_senders;
   }
   for (auto& [name, c] : channels) {
     if (c.count > 1 && c.last_timestamp > c.first_timestamp)
@@ -81,6 +117,20 @@ LogSummary SummarizeLog(const std::string& path) {
 }
 
 namespace {
+
+std::string SenderHex(uint64_t sender) {
+  std::ostringstream os;
+  os << std::hex << std::setw(16) << std::setfill('0') << sender;
+  return os.str();
+}
+
+std::string JoinNames(const std::vector<std::string>& names) {
+  std::string out;
+  for (const std::string& n : names) out += (out.empty() ? "" : ",") + n;
+  return out;
+}
+
+int64_t Publishers(const ChannelSummary& c) { return c.signed_senders + (c.unsigned_count > 0 ? 1 : 0); }
 
 std::string FormatSeconds(int64_t utime_delta) {
   std::ostringstream os;
@@ -113,6 +163,19 @@ std::string FormatLogSummary(const LogSummary& s) {
        << (c.sequence_field.empty() ? "-" : std::to_string(c.sequence_gaps)) << std::setw(9)
        << (c.sequence_field.empty() ? "-" : std::to_string(c.missing)) << "\n";
   }
+  if (!s.senders.empty()) {
+    os << "\nsigned senders (authentication trailers, not verified: one sequence over each sender's signed "
+          "channels)\n"
+       << std::left << std::setw(18) << "sender" << std::right << std::setw(9) << "messages" << std::setw(22)
+       << "trailer seq" << std::setw(7) << "gaps" << std::setw(9) << "missing" << std::setw(14) << "out of order"
+       << "  channels\n";
+    for (const SenderSummary& r : s.senders) {
+      const std::string range = std::to_string(*r.trailer_seq.first) + " .. " + std::to_string(*r.trailer_seq.last);
+      os << std::left << std::setw(18) << SenderHex(r.sender) << std::right << std::setw(9) << r.count
+         << std::setw(22) << range << std::setw(7) << r.trailer_seq.gaps << std::setw(9) << r.trailer_seq.missing
+         << std::setw(14) << r.trailer_seq.out_of_order << "  " << JoinNames(r.channels) << "\n";
+    }
+  }
   bool any_detail = false;
   for (const auto& c : s.channels) {
     if (c.decode_errors > 0) {
@@ -123,8 +186,9 @@ std::string FormatLogSummary(const LogSummary& s) {
     if (!c.sequence_field.empty() && (c.sequence_gaps > 0 || c.out_of_order > 0)) {
       if (!any_detail) os << "\n";
       any_detail = true;
-      os << c.channel << ": " << c.sequence_field << " " << *c.first_sequence << " .. " << *c.last_sequence
-         << ", " << c.sequence_gaps << " gaps (" << c.missing << " missing), " << c.out_of_order
+      os << c.channel << ": " << c.sequence_field << " " << *c.first_sequence << " .. " << *c.last_sequence;
+      if (Publishers(c) > 1) os << " (" << Publishers(c) << " publishers, each its own sequence)";
+      os << ", " << c.sequence_gaps << " gaps (" << c.missing << " missing), " << c.out_of_order
          << " out of order\n";
     }
   }
@@ -160,7 +224,22 @@ std::string LogSummaryToJson(const LogSummary& s) {
     cj["sequence_gaps"] = c.sequence_gaps;
     cj["missing"] = c.missing;
     cj["out_of_order"] = c.out_of_order;
+    cj["signed_senders"] = c.signed_senders;
+    cj["unsigned_count"] = c.unsigned_count;
     j["channels"].push_back(cj);
+  }
+  j["senders"] = nlohmann::json::array();
+  for (const SenderSummary& r : s.senders) {
+    nlohmann::json sj;
+    sj["sender"] = SenderHex(r.sender);  // hex: a JSON number cannot hold every uint64
+    sj["count"] = r.count;
+    sj["channels"] = r.channels;
+    sj["first_sequence"] = *r.trailer_seq.first;
+    sj["last_sequence"] = *r.trailer_seq.last;
+    sj["sequence_gaps"] = r.trailer_seq.gaps;
+    sj["missing"] = r.trailer_seq.missing;
+    sj["out_of_order"] = r.trailer_seq.out_of_order;
+    j["senders"].push_back(sj);
   }
   return j.dump(2) + "\n";
 }
