@@ -82,7 +82,34 @@ void SyncFolderOf(const std::string& path) {
 
 std::string PreviousFilePath(const std::string& path) { return path + ".prev"; }
 
+namespace {
+
+// A path that names a device or a pipe (/dev/null, a FIFO, /dev/stdout onto a terminal) is
+// written in place: renaming a new file onto it would replace the device itself (a run with
+// --poses-out /dev/null once turned the machine's /dev/null into a CSV file).
+bool WriteInPlaceIfSpecial(const std::string& path, const std::string& content) {
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0 || S_ISREG(st.st_mode)) return false;
+  if (S_ISDIR(st.st_mode)) throw InputError(path + ": is a folder, not a file");
+  const int fd = ::open(path.c_str(), O_WRONLY | O_CLOEXEC);
+  if (fd < 0) throw InputError(path + ": cannot open for writing: " + std::strerror(errno));
+  size_t written = 0;
+  while (written < content.size()) {
+    const ssize_t n = ::write(fd, content.data() + written, content.size() - written);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) break;
+    written += static_cast<size_t>(n);
+  }
+  const int error = errno;
+  ::close(fd);
+  if (written != content.size()) throw InputError(path + ": write failed: " + std::strerror(error));
+  return true;
+}
+
+}  // namespace
+
 void WriteFileAtomically(const std::string& path, const std::string& content, const AtomicWriteOptions& options) {
+  if (WriteInPlaceIfSpecial(path, content)) return;
   const std::string tmp = path + ".tmp." + std::to_string(::getpid());
   WriteNewFile(path, tmp, content, options);
   if (options.keep_previous && std::filesystem::exists(path)) {

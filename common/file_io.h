@@ -39,7 +39,8 @@ struct AtomicWriteOptions {
   int mode = -1;
 };
 // Writes `content` to path.tmp.<pid> and renames it onto `path`: a crash mid-write leaves
-// the previous file whole.
+// the previous file whole. A path that is a device or a pipe (/dev/null, a FIFO) is written in
+// place (renaming would replace the device); a folder is an InputError.
 void WriteFileAtomically(const std::string& path, const std::string& content, const AtomicWriteOptions& options = {});
 // PATH.prev, the file WriteFileAtomically kept with keep_previous.
 std::string PreviousFilePath(const std::string& path);

@@ -1,6 +1,9 @@
 #include "common/file_io.h"
 
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include <cstdio>
 #include <filesystem>
@@ -134,6 +137,34 @@ TEST(FileIoTest, AtomicWriteKeepsThePreviousFileWhenAsked) {
   int files = 0;
   for (const auto& e : std::filesystem::directory_iterator(temp.path())) files += e.is_regular_file();
   EXPECT_EQ(files, 2);  // no temporary left
+}
+
+// An output path that is a pipe or a device (--poses-out /dev/null) is written in place, not
+// replaced by a file: a run once turned the machine's /dev/null into a CSV. A FIFO stands in
+// for the device (a failure here must not break the machine's /dev/null).
+TEST(FileIoTest, AnOutputThatIsAPipeIsWrittenNotReplaced) {
+  const testing::TempDir temp("minenav_fileio_fifo_test");
+  const std::string path = (temp.path() / "poses.fifo").string();
+  ASSERT_EQ(::mkfifo(path.c_str(), 0600), 0);
+  // The reading end first, without blocking, so the writer's open finds a reader.
+  const int reader = ::open(path.c_str(), O_RDONLY | O_NONBLOCK);
+  ASSERT_GE(reader, 0);
+  SavePosesCsv(path, {{5, Pose2(1, 2, 0.5)}});
+  char buffer[256] = {};
+  const ssize_t n = ::read(reader, buffer, sizeof(buffer) - 1);
+  ::close(reader);
+  EXPECT_EQ(std::string(buffer, n > 0 ? static_cast<size_t>(n) : 0), PosesToCsv({{5, Pose2(1, 2, 0.5)}}));
+  EXPECT_TRUE(std::filesystem::is_fifo(path));
+  int files = 0;
+  for (const auto& e : std::filesystem::directory_iterator(temp.path())) files += e.is_regular_file();
+  EXPECT_EQ(files, 0);  // no temporary, no file in its place
+  // A folder is no output.
+  try {
+    WriteFileAtomically(temp.path().string(), "x");
+    ADD_FAILURE() << "a folder was written";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("is a folder"), std::string::npos) << e.what();
+  }
 }
 
 TEST(FileIoTest, OutputThatIsAnInputIsRefused) {
