@@ -380,7 +380,8 @@ void DeclareOptions(OptionScope scope, ExtractionOptions& o) {
                100000);
   DeclareOptions(scope.Nested("corner"), o.corner);
   scope.AddDouble("noise_sigma", &o.noise_sigma, "m",
-                  "range noise of the sensor, for the line fits (0.1 m: the Cyclone's; the Typhoon's is 0.044)",
+                  "range noise of the sensor, for the line fits: the most they assume when the scan's own is "
+                  "measured (measure_range_noise), else what they use (0.1 m: the Cyclone's; the Typhoon's is 0.044)",
                   0.001, 1.0);
   scope.AddDouble("outlier_factor", &o.outlier_factor, "1",
                   "line fits drop points farther than this many noise_sigma and refit, so clutter against a wall "

@@ -249,7 +249,8 @@ void DeclareOptions(OptionScope scope, MinimizationOptions& o) {
   scope.AddDouble("step_tolerance", &o.step_tolerance, "m, rad",
                   "converged when a step is smaller in x, y and heading (1e-6)", 1e-12, 1.0);
   scope.AddDouble("point_sigma", &o.point_sigma, "m",
-                  "range noise per scan point, for the feature weights (0.1 m: the Cyclone's)", 0.001, 1.0);
+                  "range noise per scan point, for the feature weights, when it is not measured from the scan "
+                  "(measure_range_noise): 0.1 m, the Cyclone's", 0.001, 1.0);
   scope.AddDouble("corner_variance_factor", &o.corner_variance_factor, "1",
                   "a corner's variance per axis is this x sigma^2 / points: a vertex is pinned less well than a "
                   "line by the same points (8)",

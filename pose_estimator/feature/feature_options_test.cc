@@ -24,9 +24,10 @@ TEST(FeatureOptionsTest, EveryFieldOfEveryStructIsDeclaredAndReachable) {
   // MinimizationOptions: 13 fields.
   EXPECT_EQ(ExpectEveryOptionReachable<MinimizationOptions>().size(), 13u);
   // FeaturePoseEstimatorOptions: the five nested structs (1 + 3 + 20 + 7 + 13) and min_matches,
-  // min_support, support_distance, max_median_distance_factor; stage_clock (a function the
-  // program passes, not a parameter) is the one field not declared.
-  EXPECT_EQ(ExpectEveryOptionReachable<FeaturePoseEstimatorOptions>().size(), 1u + 3u + 20u + 7u + 13u + 4u);
+  // measure_range_noise, range_noise_floor, min_support, support_distance,
+  // max_median_distance_factor; stage_clock (a function the program passes, not a parameter) is
+  // the one field not declared.
+  EXPECT_EQ(ExpectEveryOptionReachable<FeaturePoseEstimatorOptions>().size(), 1u + 3u + 20u + 7u + 13u + 6u);
 }
 
 TEST(FeatureOptionsTest, NestedStructsNestTheirKeys) {

@@ -35,6 +35,15 @@ struct FeaturePoseEstimatorOptions {
   MatchingOptions matching;
   MinimizationOptions minimization;
   int min_matches = 3;  // consistent correspondences needed to call a pose converged
+  // The range noise every estimate weighs and gates points by is measured from the scan
+  // itself (common/range_noise.h), so one option set serves the Typhoon (4.4 cm), the
+  // Cyclone (10 cm) and a SICK (1 cm) alike: it replaces minimization.point_sigma, and
+  // extraction.noise_sigma where it is smaller (the line fits' gates only narrow: wider than
+  // tuned they let clutter into a fit). Both options are used as given when this is off or a
+  // scan has too few readings to measure. Never below range_noise_floor: under it the walls'
+  // roughness and the map's survey, not the sensor, decide how well a point fits.
+  bool measure_range_noise = true;
+  double range_noise_floor = 0.01;  // m
   // Our check beyond the thesis: at the estimate, at least min_support of the scan points
   // must lie within support_distance of a map segment (clutter lowers it; a wrong pose
   // lowers it more). 0 switches it off.
@@ -69,6 +78,7 @@ struct FeaturePoseResult : MatchResult {
   bool search_complete = true;
   double support = 0.0;     // fraction of scan points on the map at the estimate
   double support_median_distance = 0.0;  // m, their median distance from the map
+  double range_noise = 0.0;  // m, the range noise the estimate used (measured, or the options')
   FeaturePoseTimings timings;
 };
 
