@@ -43,6 +43,18 @@ void CheckOutputIsNotInput(const std::string& what, const std::string& output,
 
 namespace {
 
+// Writes `content` to `fd`, again after EINTR and short writes; the bytes written.
+size_t WriteAll(int fd, const std::string& content) {
+  size_t written = 0;
+  while (written < content.size()) {
+    const ssize_t n = ::write(fd, content.data() + written, content.size() - written);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) break;
+    written += static_cast<size_t>(n);
+  }
+  return written;
+}
+
 // Writes all of `content` to a new file and, when durable, fsyncs it.
 void WriteNewFile(const std::string& path, const std::string& tmp, const std::string& content,
                   const AtomicWriteOptions& o) {
@@ -55,13 +67,7 @@ void WriteNewFile(const std::string& path, const std::string& tmp, const std::st
     std::remove(tmp.c_str());
     throw InputError(path + ": cannot create with mode " + std::to_string(o.mode));
   }
-  size_t written = 0;
-  while (written < content.size()) {
-    const ssize_t n = ::write(fd, content.data() + written, content.size() - written);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) break;
-    written += static_cast<size_t>(n);
-  }
+  const size_t written = WriteAll(fd, content);
   const bool ok = written == content.size() && (!o.durable || ::fsync(fd) == 0);
   const int error = errno;
   if (::close(fd) != 0 || !ok) {
@@ -93,13 +99,7 @@ bool WriteInPlaceIfSpecial(const std::string& path, const std::string& content) 
   if (S_ISDIR(st.st_mode)) throw InputError(path + ": is a folder, not a file");
   const int fd = ::open(path.c_str(), O_WRONLY | O_CLOEXEC);
   if (fd < 0) throw InputError(path + ": cannot open for writing: " + std::strerror(errno));
-  size_t written = 0;
-  while (written < content.size()) {
-    const ssize_t n = ::write(fd, content.data() + written, content.size() - written);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) break;
-    written += static_cast<size_t>(n);
-  }
+  const size_t written = WriteAll(fd, content);
   const int error = errno;
   ::close(fd);
   if (written != content.size()) throw InputError(path + ": write failed: " + std::strerror(error));
