@@ -87,12 +87,12 @@ TEST(MapperOptionsTest, FieldsAreAllDeclared) {
   EXPECT_EQ(KeyCount<MapperRunOptions>(), FieldCount<MapperRunOptions>() - 1 + KeyCount<MappingSessionOptions>());
   // The numbers as of this commit, so a reader sees the size of the schema (and a field
   // removed without its declaration shows too).
-  EXPECT_EQ(FieldCount<ScanPreprocessingOptions>(), 7u);
+  EXPECT_EQ(FieldCount<ScanPreprocessingOptions>(), 9u);
   EXPECT_EQ(FieldCount<PoseEstimationOptions>(), 12u);
   EXPECT_EQ(FieldCount<LoopClosureOptions>(), 24u);
   EXPECT_EQ(FieldCount<ConcurrentRefinementOptions>(), 9u);
   EXPECT_EQ(FieldCount<ContourMapperOptions>(), 16u);
-  EXPECT_EQ(KeyCount<MapperRunOptions>(), 115u);
+  EXPECT_EQ(KeyCount<MapperRunOptions>(), 117u);
 }
 
 // A value that `key` accepts and that differs from `value` (its printed default).

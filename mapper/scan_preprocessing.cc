@@ -6,6 +6,8 @@
 #include <sstream>
 
 #include "common/angle.h"
+#include "common/mixed_pixels.h"
+#include "common/range_noise.h"
 #include "common/scan_split.h"
 
 namespace minenav::mapper {
@@ -24,6 +26,8 @@ std::string ValidateOptions(const ScanPreprocessingOptions& o) {
     why << "discontinuity_angle must be in [0, pi/2) rad, got " << o.discontinuity_angle;
   else if (o.min_points_per_partial_scan < 2)
     why << "min_points_per_partial_scan must be >= 2, got " << o.min_points_per_partial_scan;
+  else if (!(o.mixed_pixel_max_step >= 0.0))
+    why << "mixed_pixel_max_step must be >= 0 rad, got " << o.mixed_pixel_max_step;
   else if (!(o.min_point_spacing >= 0.0))
     why << "min_point_spacing must be >= 0 m, got " << o.min_point_spacing;
   return why.str();
@@ -54,6 +58,15 @@ void DeclareOptions(OptionScope s, ScanPreprocessingOptions& o) {
            "partial scans with fewer points are dropped (isolated mixed pixels, clutter); 4 keeps "
            "short real walls and drops single stray returns [points]",
            2, 1000000);
+  s.AddBool("drop_mixed_pixels", &o.drop_mixed_pixels,
+            "drop one or two readings between two flat range levels at an occlusion (mixed pixels, judged by "
+            "the range noise measured from the scan): left in, one joins a post to a wall up to twice "
+            "discontinuity_threshold behind it, along the ray (true)");
+  s.AddDouble("mixed_pixel_max_step", &o.mixed_pixel_max_step, "rad",
+              "drop mixed pixels only from scans whose angular step is at most this: at a SICK's 0.5-1 deg a "
+              "surface one or two readings wide is an object and an oblique wall is not straight in range over "
+              "four readings (0.005 rad: the mining ladars' 0.18 deg pass)",
+              0.0, 1.0);
   s.AddDouble("min_point_spacing", &o.min_point_spacing, "m",
               "density reduction (7.2.3): within a partial scan keep a point only this far from the last kept "
               "one; 0 = off, every point is kept",
@@ -131,6 +144,13 @@ PreprocessedScan PreprocessScan(const LadarScan& scan, const ScanPreprocessingOp
     valid[i] = std::isfinite(r) && r > 0.0f && r >= lo && r <= hi;
   }
   const std::vector<float> ranges = MedianFilterRanges(scan.ranges, valid, options.median_filter_size);
+  if (options.drop_mixed_pixels && std::abs(scan.angle_step) <= options.mixed_pixel_max_step) {
+    // Below 1 cm the walls' roughness, not the sensor, is the noise a level shows.
+    const double noise = std::max(MeasureRangeNoise(scan).sigma, 0.01);
+    const std::vector<bool> mixed = FindMixedPixels(ranges, valid, noise);
+    for (size_t i = 0; i < n; ++i)
+      if (mixed[i]) valid[i] = false;
+  }
 
   // Points in the vehicle frame, in reading order; invalid readings stay NaN (missing).
   std::vector<Eigen::Vector2d> pts(n, Eigen::Vector2d::Constant(std::numeric_limits<double>::quiet_NaN()));

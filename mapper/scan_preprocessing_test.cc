@@ -82,6 +82,49 @@ TEST(ScanPreprocessingTest, OcclusionSplitsPartialScansAndTrimDropsFarWalls) {
   for (const auto& q : t.partial_scans[0].points) EXPECT_NEAR(q.x(), 3.0, 1e-6);
 }
 
+// A post 0.7 m in front of a wall, seen by a Typhoon-fine scan (2048 readings, 4.4 cm noise):
+// post and wall are two partial scans (the gap is over the 0.5 m break distance), but one mixed
+// reading half way between them (2.35 m) is under it from both and joins them, a bridge along
+// the ray; it is dropped, and post and wall stay apart. At a SICK's 1 deg
+// (mixed_pixel_max_step) the rule stays off.
+TEST(ScanPreprocessingTest, AMixedPixelNoLongerBridgesAPostAndTheWallBehind) {
+  auto world = Rectangle(-5, -5, 2.7, 5);  // the wall behind the post at x = 2.7
+  world = testing::Concat(world, Rectangle(2.0, -0.3, 2.2, 0.3));
+  testing::ScanSpec spec;
+  spec.num_points = 2048;
+  spec.range_sigma = 0.044;
+  spec.seed = 3;
+  LadarScan scan = MakeScan(world, Pose2(0, 0, 0), spec);
+  // The post's left edge (y = 0.3 at x = 2.0) is at bearing atan(0.3 / 2.0): the first reading
+  // past it sees the wall; make it a mix of the two.
+  const double edge = std::atan2(0.3, 2.0);
+  size_t past = 0;
+  while (scan.Bearing(past) < edge) ++past;
+  ASSERT_GT(scan.ranges[past], 2.5f);  // the wall
+  scan.ranges[past] = static_cast<float>(2.35 / std::cos(scan.Bearing(past)));
+  const auto partial_holding = [](const PreprocessedScan& p, double x, double y) {
+    for (size_t k = 0; k < p.partial_scans.size(); ++k)
+      for (const auto& q : p.partial_scans[k].points)
+        if ((q - Eigen::Vector2d(x, y)).norm() < 0.05) return static_cast<int>(k);
+    return -1;
+  };
+  ScanPreprocessingOptions kept;
+  kept.drop_mixed_pixels = false;
+  const PreprocessedScan bridged = PreprocessScan(scan, kept);
+  const PreprocessedScan split = PreprocessScan(scan, {});
+  // The post's face (2.0, 0) and the wall just above it (2.7, 0.5).
+  ASSERT_GE(partial_holding(bridged, 2.0, 0.0), 0);
+  EXPECT_EQ(partial_holding(bridged, 2.0, 0.0), partial_holding(bridged, 2.7, 0.5));
+  ASSERT_GE(partial_holding(split, 2.0, 0.0), 0);
+  ASSERT_GE(partial_holding(split, 2.7, 0.5), 0);
+  EXPECT_NE(partial_holding(split, 2.0, 0.0), partial_holding(split, 2.7, 0.5));
+  EXPECT_EQ(split.NumPoints(), bridged.NumPoints() - 1);  // the mixed reading, and only it
+  // A coarse scan of the same world: nothing is dropped.
+  spec.num_points = 360;
+  const LadarScan coarse = MakeScan(world, Pose2(0, 0, 0), spec);
+  EXPECT_EQ(PreprocessScan(coarse, {}).NumPoints(), PreprocessScan(coarse, kept).NumPoints());
+}
+
 TEST(ScanPreprocessingTest, AdaptiveDiscontinuityKeepsSparseFarWallsAndSplitsNearGaps) {
   // 1° readings (SICK-like) in a 60 m square room: the walls, 30–42 m away, have their
   // readings 0.52–1.05 m apart. A fixed 0.5 m threshold leaves only single points (all
