@@ -30,7 +30,8 @@ RangeNoise MeasureRangeNoise(const LadarScan& scan) {
     const double across = Cross(ux, uy, dx, dy);  // length * sin(angle between ray and line)
     if (!(length > 0.0) || std::abs(across) < kMinSine * length) continue;
     const double on_line = Cross(ax, ay, dx, dy) / across;  // range where ray i meets the line
-    off.push_back(std::abs(static_cast<double>(scan.ranges[i]) - on_line));
+    const double d = std::abs(static_cast<double>(scan.ranges[i]) - on_line);
+    if (std::isfinite(d)) off.push_back(d);  // (bearings from a hostile angle_step may be NaN)
   }
   out.triples = static_cast<int>(off.size());
   if (out.triples < kMinRangeNoiseTriples) return out;

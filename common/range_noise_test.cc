@@ -86,6 +86,16 @@ TEST(RangeNoise, AnExactScanHasNone) {
   EXPECT_LT(m.sigma, 1e-4);  // float ranges: micrometres
 }
 
+// A scan whose bearings are not numbers (a hostile angle_step) measures nothing, and no NaN
+// reaches the median.
+TEST(RangeNoise, NoBearingsNoEstimate) {
+  LadarScan scan = Cast(kStations[0], 2048, 2.0 * kPi, 0.044, 0.0, 1);
+  scan.angle_step = std::nan("");
+  const RangeNoise m = MeasureRangeNoise(scan);
+  EXPECT_EQ(m.triples, 0);
+  EXPECT_EQ(m.sigma, 0.0);
+}
+
 TEST(RangeNoise, TooFewReadingsGiveNoEstimate) {
   LadarScan scan = Cast(kStations[0], 2048, 2.0 * kPi, 0.044, 0.0, 1);
   for (size_t i = 0; i < scan.ranges.size(); ++i)
