@@ -115,7 +115,8 @@ FeaturePoseResult FeaturePoseEstimator::Estimate(const LadarScan& scan,
   MinimizationOptions minimization = options_.minimization;
   if (options_.measure_range_noise) {
     if (const RangeNoise noise = MeasureRangeNoise(scan); noise.sigma > 0.0) {
-      const double sigma = std::max(noise.sigma, options_.range_noise_floor);
+      // At most 1 m (point_sigma's own bound): more is no sensor's noise but a scan of garbage.
+      const double sigma = std::clamp(noise.sigma, options_.range_noise_floor, std::max(options_.range_noise_floor, 1.0));
       minimization.point_sigma = sigma;
       // The line fits' gates only ever narrow: wider than they were tuned (the mockup's clutter
       // at 10 cm) they let clutter and mixed pixels into a fit (the mockup measures 10.6 cm and
