@@ -128,6 +128,11 @@ void DeclareOptions(OptionScope s, CoordinatorOptions& o) {
   s.AddBool("preplan", &o.preplan, "plan the next subtask's path while the current one executes");
   s.AddDouble("preplan_tolerance", &o.preplan_tolerance, "m",
               "a path planned ahead is used when the vehicle is this close to its start (heading: this / 3 m)", 0.0, 5.0);
+  s.AddDouble("preplan_max_age", &o.preplan_max_age, "s",
+              "a path planned ahead longer ago than this is planned anew: the tracker abandons a path older than "
+              "its path_max_age (600 s), and at real speed a cut keeps the next path waiting about that long "
+              "(300 s: half of it)",
+              1.0, 1e6);
   s.AddDouble("cut_end_offset", &o.cut_end_offset, "m",
               "a cut leaves the vehicle this far behind where it started (the cutter backs out to its withdraw_gap, "
               "it starts at its standoff: their difference; for planning ahead)",
@@ -695,7 +700,9 @@ void Coordinator::BeginDrive(Running& r, const Pose2& goal, double clearance, bo
   if (preplan_ && task_id >= 0 && preplan_->task_id == task_id) {
     const Preplan p = *preplan_;
     preplan_.reset();
-    if (p.answer && p.answer->feasible && PoseFresh(now) && Near(*pose_, p.answer->start, options_.preplan_tolerance)) {
+    const bool fresh_path = p.answer && now - p.answer->utime <= Us(options_.preplan_max_age);
+    if (p.answer && p.answer->feasible && fresh_path && PoseFresh(now) &&
+        Near(*pose_, p.answer->start, options_.preplan_tolerance)) {
       d.request_id = p.request_id;
       d.phase = Drive::Phase::kSendPath;
       d.path_utime = p.answer->utime;
@@ -704,10 +711,12 @@ void Coordinator::BeginDrive(Running& r, const Pose2& goal, double clearance, bo
           std::to_string(p.request_id) + ")");
     } else {
       Log("subtask " + std::to_string(task_id) + ": the path planned ahead is not used (" +
-          (!p.answer ? "no answer yet"
-                     : !p.answer->feasible ? "it was infeasible: " + p.answer->status
-                                           : "the vehicle is " + (pose_ ? Where(*pose_) : std::string("unknown")) +
-                                                 ", the path starts at " + Where(p.answer->start)) +
+          (!p.answer            ? "no answer yet"
+           : !p.answer->feasible ? "it was infeasible: " + p.answer->status
+           : !fresh_path         ? "it was planned " + std::to_string(std::llround(static_cast<double>(now - p.answer->utime) * 1e-6)) +
+                                       " s ago, over preplan_max_age"
+                                 : "the vehicle is " + (pose_ ? Where(*pose_) : std::string("unknown")) +
+                                       ", the path starts at " + Where(p.answer->start)) +
           "): planning anew");
     }
   }

@@ -15,7 +15,8 @@
 //   a cut       CUT_TASK to the cutter (depth, face line); done on its TASK_STATUS DONE.
 //   planning    while subtask n executes, the path of subtask n+1 is requested from where n
 //   ahead       will end (6.2.2: "the effective planning time is usually zero"); it is used
-//               when n ends within `preplan_tolerance` of that pose, else planned anew.
+//               when n ends within `preplan_tolerance` of that pose and at most
+//               `preplan_max_age` after it was planned, else planned anew.
 //   commands    every command carries an id and is re-sent every `resend_period` until it is
 //               acknowledged (PATH, TASK_PLAN, TASK_STATUS of that id), so a lost message costs a
 //               resend and a repeat is harmless; no answer in `answer_timeout`: the leaf fails.
@@ -74,6 +75,7 @@ struct CoordinatorOptions {
   double recovery_timeout = 60.0;  // s a lost process has to come back before the mission fails
   bool preplan = true;             // plan subtask n+1 while n executes
   double preplan_tolerance = 0.3;  // m (and that over 3 m in rad): a pre-planned path is used this close to its start
+  double preplan_max_age = 300.0;  // s: an older pre-planned path is planned anew (the tracker abandons at 600 s)
   double cut_end_offset = 0.4;     // m a cut ends behind its start (cutter withdraw_gap - standoff)
   bool auto_start = false;         // start without an operator START
   double max_pose_age = 30.0;      // s: an older pose estimate is not a path's start

@@ -305,6 +305,23 @@ TEST(CoordinatorTest, TheNextSubtasksPathIsPlannedWhileTheCutRuns) {
   EXPECT_EQ(ahead, 2);
 }
 
+// At real speed a cut keeps the next subtask's path waiting: one planned ahead longer ago than
+// preplan_max_age is planned anew rather than sent to a tracker that abandons old paths (the
+// 53-minute mission of 2026-12-07 lost a drive to "path stale: planned 600.09 s ago").
+TEST(CoordinatorTest, APathPlannedAheadTooLongAgoIsPlannedAnew) {
+  CoordinatorOptions o = Options();
+  o.explore = false;
+  o.preplan_max_age = 5.0;
+  Coordinator c(o, 1000);
+  FakeFleet f(c);
+  f.cut_time = 8.0;  // each cut outlasts the age limit
+  StartMission(c, f);
+  ASSERT_TRUE(f.RunUntilFinished(600));
+  EXPECT_EQ(c.state(), MissionState::kDone);
+  EXPECT_EQ(c.stats().drives_preplanned, 0);
+  EXPECT_TRUE(f.Logged("s ago, over preplan_max_age")) << "and says why";
+}
+
 TEST(CoordinatorTest, APathPlannedAheadIsNotUsedWhenTheVehicleEndsElsewhere) {
   CoordinatorOptions o = Options();
   o.explore = false;
