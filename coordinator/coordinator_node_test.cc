@@ -280,7 +280,7 @@ TEST(CoordinatorNodeTest, TheReportSaysWhatTheMissionDid) {
 TEST(CoordinatorNodeTest, EveryOptionIsReachable) {
   const auto keys = ExpectEveryOptionReachable<CoordinatorNodeOptions>(
       CoordinatorNodeOptions{}, [](ConfigSchema& s, CoordinatorNodeOptions& o) { DeclareOptions(s, o); });
-  EXPECT_EQ(keys.size(), 19u + 26u);  // 19 of the node, 26 of the mission
+  EXPECT_EQ(keys.size(), 19u + 27u);  // 19 of the node, 27 of the mission
 }
 
 }  // namespace
