@@ -37,15 +37,13 @@ std::vector<bool> FindMixedPixels(const std::vector<float>& ranges, const std::v
     for (int len = options.max_run; len >= 1; --len) {
       const int b = a + len - 1;  // the run is [a, b]; the far surface starts at b + 1
       if (!ok(b) || !surface(b + 1, +1)) continue;
-      // Each reading of the run lies off both surfaces as they continue (by t, and by the
-      // noise of the extrapolation, about a sigma a reading), between them.
+      // Each reading of the run lies between both surfaces as they continue, off each by t and
+      // by the noise of the extrapolation (about a sigma a reading).
       bool mixed_run = true;
       for (int i = a; i <= b && mixed_run; ++i) {
-        const double near = extrapolate(a - 1, -1, i), far = extrapolate(b + 1, +1, i);
-        const double lo = std::min(near, far), hi = std::max(near, far);
-        const double margin_near = t + range_noise * (i - a + 1), margin_far = t + range_noise * (b + 1 - i);
-        const double margin_lo = near < far ? margin_near : margin_far, margin_hi = near < far ? margin_far : margin_near;
-        mixed_run = r(i) > lo + margin_lo && r(i) < hi - margin_hi;
+        const double off_near = r(i) - extrapolate(a - 1, -1, i), off_far = r(i) - extrapolate(b + 1, +1, i);
+        mixed_run = off_near * off_far < 0.0 && std::abs(off_near) > t + range_noise * (i - a + 1) &&
+                    std::abs(off_far) > t + range_noise * (b + 1 - i);
       }
       if (!mixed_run) continue;
       for (int i = a; i <= b; ++i) mixed[static_cast<size_t>(i)] = true;

@@ -19,7 +19,7 @@
 namespace minenav {
 
 struct MixedPixelOptions {
-  // Readings; the longest run between two levels taken for mixed pixels (2: the beam of a
+  // Readings; the longest run between two surfaces taken for mixed pixels (2: the beam of a
   // mining ladar is one to two angular steps wide, the Typhoon's 3 mrad against 3.07 mrad).
   int max_run = 2;
   // Of the range noise: a mixed reading lies more than this many sigma off each surface's

@@ -6,31 +6,25 @@
 
 namespace minenav {
 
-namespace {
-
-double Cross(double ax, double ay, double bx, double by) { return ax * by - ay * bx; }
-
-}  // namespace
-
 RangeNoise MeasureRangeNoise(const LadarScan& scan) {
   RangeNoise out;
   // A ray within this angle of its neighbours' line meets it too far from the points to say
   // anything about the noise (sin 5 deg).
   const double kMinSine = 0.087;
+  const std::vector<ScanPoint> points = ScanPointsInSensorFrame(scan);  // each reading's trig once
   std::vector<double> off;
-  off.reserve(scan.ranges.size());
-  for (size_t i = 1; i + 1 < scan.ranges.size(); ++i) {
-    if (!scan.IsValid(i - 1) || !scan.IsValid(i) || !scan.IsValid(i + 1)) continue;
-    const double b0 = scan.Bearing(i - 1), b1 = scan.Bearing(i), b2 = scan.Bearing(i + 1);
-    const double r0 = scan.ranges[i - 1], r2 = scan.ranges[i + 1];
-    const double ax = r0 * std::cos(b0), ay = r0 * std::sin(b0);
-    const double dx = r2 * std::cos(b2) - ax, dy = r2 * std::sin(b2) - ay;
-    const double ux = std::cos(b1), uy = std::sin(b1);
-    const double length = std::hypot(dx, dy);
-    const double across = Cross(ux, uy, dx, dy);  // length * sin(angle between ray and line)
+  off.reserve(points.size());
+  for (size_t k = 1; k + 1 < points.size(); ++k) {
+    const ScanPoint &before = points[k - 1], &at = points[k], &after = points[k + 1];
+    if (before.index + 1 != at.index || at.index + 1 != after.index) continue;  // three consecutive readings
+    const Eigen::Vector2d along = after.point - before.point;
+    const Eigen::Vector2d ray = at.point / at.range;  // a valid reading's range is > 0
+    const double length = along.norm();
+    const double across = ray.x() * along.y() - ray.y() * along.x();  // length * sin(ray, line)
     if (!(length > 0.0) || std::abs(across) < kMinSine * length) continue;
-    const double on_line = Cross(ax, ay, dx, dy) / across;  // range where ray i meets the line
-    const double d = std::abs(static_cast<double>(scan.ranges[i]) - on_line);
+    // The range where ray k meets the line through its neighbours' points.
+    const double on_line = (before.point.x() * along.y() - before.point.y() * along.x()) / across;
+    const double d = std::abs(at.range - on_line);
     if (std::isfinite(d)) off.push_back(d);  // (bearings from a hostile angle_step may be NaN)
   }
   out.triples = static_cast<int>(off.size());

@@ -25,6 +25,11 @@ struct RangeNoise {
   int triples = 0;     // triples of consecutive valid readings the estimate used
 };
 
+// m; the least range noise worth judging points by: below it the walls' roughness and the
+// map's survey, not the sensor, decide how well a point fits (the FPE's range_noise_floor, the
+// mapper's mixed-pixel test).
+inline constexpr double kLeastUsefulRangeNoise = 0.01;
+
 // Fewer triples than this give no estimate (sigma 0): the median of fewer would wander.
 inline constexpr int kMinRangeNoiseTriples = 50;
 

@@ -59,9 +59,9 @@ void DeclareOptions(OptionScope s, ScanPreprocessingOptions& o) {
            "short real walls and drops single stray returns [points]",
            2, 1000000);
   s.AddBool("drop_mixed_pixels", &o.drop_mixed_pixels,
-            "drop one or two readings between two flat range levels at an occlusion (mixed pixels, judged by "
-            "the range noise measured from the scan): left in, one joins a post to a wall up to twice "
-            "discontinuity_threshold behind it, along the ray (true)");
+            "drop one or two readings between two surfaces at an occlusion, off the continuation of each "
+            "(mixed pixels, judged by the range noise measured from the scan): left in, one joins a post to a "
+            "wall up to twice discontinuity_threshold behind it, along the ray (true)");
   s.AddDouble("mixed_pixel_max_step", &o.mixed_pixel_max_step, "rad",
               "drop mixed pixels only from scans whose angular step is at most this: at a SICK's 0.5-1 deg a "
               "surface one or two readings wide is an object and an oblique wall is not straight in range over "
@@ -145,8 +145,7 @@ PreprocessedScan PreprocessScan(const LadarScan& scan, const ScanPreprocessingOp
   }
   const std::vector<float> ranges = MedianFilterRanges(scan.ranges, valid, options.median_filter_size);
   if (options.drop_mixed_pixels && std::abs(scan.angle_step) <= options.mixed_pixel_max_step) {
-    // Below 1 cm the walls' roughness, not the sensor, is the noise a level shows.
-    const double noise = std::max(MeasureRangeNoise(scan).sigma, 0.01);
+    const double noise = std::max(MeasureRangeNoise(scan).sigma, kLeastUsefulRangeNoise);
     const std::vector<bool> mixed = FindMixedPixels(ranges, valid, noise);
     for (size_t i = 0; i < n; ++i)
       if (mixed[i]) valid[i] = false;

@@ -36,8 +36,9 @@ struct ScanPreprocessingOptions {
   double discontinuity_angle = 0.0;
   // Points; partial scans with fewer points are dropped (isolated mixed pixels, clutter).
   int min_points_per_partial_scan = 4;
-  // Drop mixed pixels (common/mixed_pixels.h): one or two readings between two flat range
-  // levels at an occlusion, judged by the scan's own range noise (common/range_noise.h). Left
+  // Drop mixed pixels (common/mixed_pixels.h): one or two readings between two surfaces at an
+  // occlusion, off the continuation of each, judged by the scan's own range noise
+  // (common/range_noise.h). Left
   // in, one between a post and a wall up to twice discontinuity_threshold behind it joins the
   // two along the ray, and the map gets a contour there (the research mine's worst deviation).
   bool drop_mixed_pixels = true;

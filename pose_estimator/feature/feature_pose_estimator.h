@@ -19,6 +19,7 @@
 #include "common/geometry.h"
 #include "common/match_result.h"
 #include "common/pose2.h"
+#include "common/range_noise.h"
 #include "common/scan.h"
 #include "pose_estimator/feature/feature_extraction.h"
 #include "pose_estimator/feature/feature_map.h"
@@ -43,7 +44,7 @@ struct FeaturePoseEstimatorOptions {
   // scan has too few readings to measure. Never below range_noise_floor: under it the walls'
   // roughness and the map's survey, not the sensor, decide how well a point fits.
   bool measure_range_noise = true;
-  double range_noise_floor = 0.01;  // m
+  double range_noise_floor = kLeastUsefulRangeNoise;  // m
   // Our check beyond the thesis: at the estimate, at least min_support of the scan points
   // must lie within support_distance of a map segment (clutter lowers it; a wrong pose
   // lowers it more). 0 switches it off.
