@@ -1,5 +1,5 @@
 // The path tracker (tracker/README.md, issue 14, "Measured in simulation"): the tracker in a
-// closed loop on vehicle_sim's miner (tracker/testing/closed_loop.h): skid-steer kinematics
+// closed loop on vehicle_sim's miner (sim/testing/tracker_closed_loop.h): skid-steer kinematics
 // and limits, odometry with drift, wheel slip the odometry misses, and a scan every 1, 2 or
 // 5 s (1, 0.5, 0.2 Hz) whose pose estimate comes from the LIVE contour mapper
 // (--pose_source live, the default: the simulated Typhoon scan of the true world from the
@@ -28,7 +28,7 @@
 #include "bench/bench_util.h"
 #include "common/angle.h"
 #include "common/config.h"
-#include "tracker/testing/closed_loop.h"
+#include "sim/testing/tracker_closed_loop.h"
 
 namespace minenav {
 namespace {

@@ -14,7 +14,7 @@
 //               DRIVE_COMMAND (drive_command_t: STOP when it halts the vehicle, and every tick
 //               while e-stopped), MISSION_STATUS (mission_status_t, every status_period and on
 //               every change), HEARTBEAT
-// It never reads SIM_TRUTH. With --report-out it writes what the mission did (JSON) when the
+// It decides on the fleet's own estimates only. With --report-out it writes what the mission did (JSON) when the
 // mission ends and at shutdown.
 
 #include <cstdint>

@@ -18,7 +18,7 @@
 // (every tick while a cut is active and one STOP when it ends, nothing otherwise),
 // CUTTER_COMMAND, TASK_STATUS (on start, every second while active, and when it ends: DONE,
 // or FAILED with the one-line reason) and HEARTBEAT (the step, or the reason it stopped).
-// Never SIM_TRUTH.
+// It acts on the fleet's own estimates only.
 
 #include <cstdint>
 #include <optional>

@@ -20,7 +20,7 @@
 #include "sim/vehicle_sim.h"
 #include "sim/world.h"
 #include "tracker/cutter.h"
-#include "tracker/testing/mapper_pose_source.h"
+#include "sim/testing/mapper_pose_source.h"
 
 namespace minenav {
 namespace {

@@ -1,4 +1,4 @@
-// The tracker in a closed loop on vehicle_sim's miner (tracker/testing/closed_loop.h):
+// The tracker in a closed loop on vehicle_sim's miner (sim/testing/tracker_closed_loop.h):
 // odometry that drifts, wheel slip the odometry misses, pose estimates with noise at 1, 0.5
 // and 0.2 Hz; paths from the SE(2) planner in a generated mine. Judged against the truth:
 // cross-track error and the final pose within the targets (RMS <= 5 cm, max <= 15 cm,
@@ -7,7 +7,7 @@
 // and not obeyed. Then a few maneuvers with the pose from the live contour mapper on
 // simulated scans, within the same targets.
 
-#include "tracker/testing/closed_loop.h"
+#include "sim/testing/tracker_closed_loop.h"
 
 #include <gtest/gtest.h>
 

@@ -4,7 +4,7 @@
 // (CONTOUR_MAP; LINE_MAP too when line_map_channel is given), and publishes DRIVE_COMMAND at
 // --rate, TASK_STATUS (task_id = the path's request_id) when a path is taken, done, failed,
 // abandoned or blocked, and when the watchdog stops or releases the vehicle, and HEARTBEAT.
-// It never reads SIM_TRUTH.
+// It steers by the fleet's own pose estimate (POSE) only.
 //
 // Repeat-safe (a coordinator re-sends each path on DRIVE_PATH until acknowledged): a path_t
 // whose request_id is the active path's with the same path (start and pieces; its stamp and

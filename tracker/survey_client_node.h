@@ -3,7 +3,7 @@
 // path planner for a path to each scan station in turn (PATH_REQUEST, start = the latest
 // converged POSE), follows the planner's PATH answers and the path tracker's TASK_STATUS of
 // its requests, and stops the process after the last station when asked to. It never
-// steers (path_tracker does) and never reads SIM_TRUTH. The process (survey_client_main.cc)
+// steers (path_tracker does) and uses the fleet's own estimates only. The process (survey_client_main.cc)
 // only declares these options and wires the node.
 
 #include <cstdint>

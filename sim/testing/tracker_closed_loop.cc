@@ -1,4 +1,4 @@
-#include "tracker/testing/closed_loop.h"
+#include "sim/testing/tracker_closed_loop.h"
 
 #include <algorithm>
 #include <cmath>

@@ -38,7 +38,7 @@
 #include "sim/vehicle_sim.h"
 #include "tracker/path_tracker.h"
 #include "tracker/pose_predictor.h"
-#include "tracker/testing/mapper_pose_source.h"
+#include "sim/testing/mapper_pose_source.h"
 
 namespace minenav::testing {
 

@@ -1,4 +1,4 @@
-#include "tracker/testing/mapper_pose_source.h"
+#include "sim/testing/mapper_pose_source.h"
 
 #include <algorithm>
 #include <utility>
