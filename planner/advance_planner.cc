@@ -229,11 +229,9 @@ AdvanceResult PlanAdvance(const TaskMap& map_in, const Footprint& footprint_in, 
   // it (never in contact with the map); the others keep the clearance.
   std::optional<Se2Planner> leaving;
   if (!planner.PoseFree(r.vehicle))
-    if (const double has = planner.ClearanceFor(r.vehicle); has >= 0.0) {
-      Se2PlannerOptions leaving_options = po;
-      leaving_options.clearance = has;
-      leaving.emplace(map.Boundary(), footprint, leaving_options);
-      result.leaving_clearance = has;
+    if (const std::optional<Se2PlannerOptions> leaving_options = planner.LeavingOptions(r.vehicle)) {
+      leaving.emplace(map.Boundary(), footprint, *leaving_options);
+      result.leaving_clearance = leaving_options->clearance;
     }
   SearchLimits leg_limits = limits;
   leg_limits.max_expansions = std::min(limits.max_expansions, o.maneuver_expansions);

@@ -107,7 +107,7 @@ struct AdvanceResult {
   std::optional<EntryGeometry> entry;    // when the entry was found
   std::vector<ManeuverCheck> maneuvers;  // the checks made (the last one failed when the plan did)
   // Set when the vehicle stood within the request's clearance of a wall: the clearance its
-  // first maneuver was checked with (what it has, Se2Planner::ClearanceFor).
+  // first maneuver was checked with (what it has, Se2Planner::LeavingOptions).
   std::optional<double> leaving_clearance;
 };
 

@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <tuple>
 
 #include "common/angle.h"
 #include "common/config.h"
+#include "planner/footprint.h"
 
 namespace minenav {
 namespace {
@@ -62,6 +64,37 @@ void DeclareOptions(OptionScope scope, FreeSpaceOptions& o) {
                   0.0, 179.0);
   scope.AddInt("probe_rays", &o.probe_rays, "rays that decide whether a point is in the known free space", 1, 64);
   scope.AddDouble("probe_range", &o.probe_range, "m", "how far those rays look (nothing hit: unknown)", 1.0, 1e5);
+}
+
+namespace {
+
+// m between a segment and a polygon (0 when they cross or the segment is inside).
+double SegmentPolygonDistance(const Segment& s, const std::vector<Eigen::Vector2d>& polygon) {
+  if (PolygonContains(polygon, s.a) || PolygonContains(polygon, s.b)) return 0.0;
+  double d = std::numeric_limits<double>::infinity();
+  for (size_t k = 0; k < polygon.size(); ++k) {
+    const Segment edge(polygon[k], polygon[(k + 1) % polygon.size()]);
+    if (SegmentIntersection(s, edge)) return 0.0;
+    d = std::min(
+        {d, PointToSegmentDistance(s.a, edge), PointToSegmentDistance(s.b, edge), PointToSegmentDistance(edge.a, s)});
+  }
+  return d;
+}
+
+}  // namespace
+
+std::vector<Segment> FrontiersAwayFrom(const std::vector<Segment>& frontiers,
+                                       const std::vector<Eigen::Vector2d>& polygon, double margin, int* dropped) {
+  std::vector<Segment> out;
+  int n = 0;
+  for (const Segment& f : frontiers) {
+    if (SegmentPolygonDistance(f, polygon) < margin)
+      ++n;
+    else
+      out.push_back(f);
+  }
+  if (dropped != nullptr) *dropped = n;
+  return out;
 }
 
 std::vector<Segment> ContourFreeSpace::Boundary(bool allow_unknown) const {

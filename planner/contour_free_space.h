@@ -82,6 +82,14 @@ struct ContourFreeSpace {
 ContourFreeSpace MakeContourFreeSpace(const std::vector<mapper::Contour>& contours,
                                       const FreeSpaceOptions& options = {});
 
+// The frontiers that stay `margin` or more from `polygon` (m, map frame: a vehicle's
+// footprint). The vehicle stands where the ladar has looked from, so a frontier through it is
+// not the edge of what the ladar saw (MakeContourFreeSpace's pairing of contour ends can draw
+// one along a wall across a crossing). `dropped` (may be null) counts the others.
+std::vector<Segment> FrontiersAwayFrom(const std::vector<Segment>& frontiers,
+                                       const std::vector<Eigen::Vector2d>& polygon, double margin,
+                                       int* dropped = nullptr);
+
 // Point queries against the walls and frontiers of one ContourFreeSpace.
 class KnownFreeSpace {
  public:

@@ -40,12 +40,14 @@ struct PathPlannerNode::Answer {
 };
 
 // Worker thread only.
+using PlannerKey = std::tuple<double, double, bool, bool>;
+
 struct PathPlannerNode::PlannerCache {
   int64_t version = -1;
   std::unique_ptr<ContourFreeSpace> space;
   std::unique_ptr<KnownFreeSpace> known;
-  // (clearance, allow_unknown, allow_reverse) -> planner on this version's walls.
-  std::map<std::tuple<double, bool, bool>, std::unique_ptr<Se2Planner>> planners;
+  // (clearance, collision_step, allow_unknown, allow_reverse) -> planner on this version's walls.
+  std::map<PlannerKey, std::unique_ptr<Se2Planner>> planners;
 };
 
 namespace {
@@ -259,14 +261,14 @@ PathPlannerNode::Answer PathPlannerNode::Handle(Job& job) {
     cache.planners.clear();
   }
   const double clearance = r.clearance > 0.0 ? r.clearance : options_.default_clearance;
-  auto planner_with = [&](double c) -> const Se2Planner& {
-    const std::tuple<double, bool, bool> key(c, r.allow_unknown, r.allow_reverse);
+  Se2PlannerOptions requested = options_.planner;
+  requested.clearance = clearance;
+  if (!r.allow_reverse) requested.costs.reverse_factor = std::max(requested.costs.reverse_factor, kNoReverseFactor);
+  auto planner_with = [&](const Se2PlannerOptions& po) -> const Se2Planner& {
+    const PlannerKey key(po.clearance, po.collision_step, r.allow_unknown, r.allow_reverse);
     auto it = cache.planners.find(key);
     if (it == cache.planners.end()) {
       if (cache.planners.size() >= kMaxPlannersPerMap) cache.planners.clear();
-      Se2PlannerOptions po = options_.planner;
-      po.clearance = c;
-      if (!r.allow_reverse) po.costs.reverse_factor = std::max(po.costs.reverse_factor, kNoReverseFactor);
       ++planners_built_;
       it = cache.planners
                .emplace(key, std::make_unique<Se2Planner>(cache.space->Boundary(r.allow_unknown), footprint_, po))
@@ -274,7 +276,7 @@ PathPlannerNode::Answer PathPlannerNode::Handle(Job& job) {
     }
     return *it->second;
   };
-  const Se2Planner* chosen = &planner_with(clearance);
+  const Se2Planner* chosen = &planner_with(requested);
   const std::string map_name = "map version " + std::to_string(job.map->version);
 
   Pose2 start = FromLcm(r.start);
@@ -333,15 +335,40 @@ PathPlannerNode::Answer PathPlannerNode::Handle(Job& job) {
     MINENAV_LOG(kInfo) << "request " << r.request_id << ": " << prefix << why;
     return answer;
   };
-  // A vehicle that stands within the clearance of a wall (the map grew around it where it
-  // stopped short, or a cut's ribs beside it) is not stuck: it leaves with the clearance it
-  // has (never in contact). The answer says so.
+  // Where the vehicle stands: a frontier through its footprint is no edge of what the ladar
+  // saw (it looked from there), and within the clearance of a wall (the map grew around it
+  // where it stopped short, or a cut's ribs beside it) it is not stuck: it leaves with the
+  // clearance it has, never in contact. The answer says so. Such a start gets planners of its
+  // own (not cached: they hold on to this start's map).
+  const KnownFreeSpace* known = cache.known.get();
+  std::optional<ContourFreeSpace> own_space;
+  std::unique_ptr<KnownFreeSpace> own_known;
+  std::unique_ptr<Se2Planner> own_planner;
+  if (chosen->setup_error().empty() && !chosen->PoseFree(start) && !r.allow_unknown) {
+    std::vector<Eigen::Vector2d> polygon;
+    for (const Eigen::Vector2d& v : footprint_.vertices) polygon.push_back(start * v);
+    int dropped = 0;
+    std::vector<Segment> frontiers =
+        FrontiersAwayFrom(cache.space->frontiers, polygon, clearance + options_.planner.collision_step, &dropped);
+    if (dropped > 0) {
+      own_space = ContourFreeSpace{cache.space->walls, std::move(frontiers), 0, 0};
+      own_known = std::make_unique<KnownFreeSpace>(*own_space, options_.free_space);
+      own_planner = std::make_unique<Se2Planner>(own_space->Boundary(false), footprint_, requested);
+      known = own_known.get();
+      chosen = own_planner.get();
+      prefix += std::to_string(dropped) + " frontier(s) through the vehicle's footprint ignored; ";
+    }
+  }
   if (chosen->setup_error().empty() && !chosen->PoseFree(start)) {
-    const double has = chosen->ClearanceFor(start);
-    if (has >= 0.0) {
-      const Se2Planner& relaxed = planner_with(has);
+    if (const std::optional<Se2PlannerOptions> leaving = chosen->LeavingOptions(start)) {
+      if (own_space) own_planner = std::make_unique<Se2Planner>(own_space->Boundary(false), footprint_, *leaving);
+      const Se2Planner& relaxed = own_space ? *own_planner : planner_with(*leaving);
       if (relaxed.PoseFree(start)) {
-        prefix += "start within " + Fixed(clearance) + " m of a wall: planned with a clearance of " + Fixed(has) + " m; ";
+        prefix += "start within " + Fixed(clearance) + " m of a wall: planned with a clearance of " +
+                  Fixed(leaving->clearance) + " m";
+        if (leaving->collision_step < requested.collision_step)
+          prefix += " (checked every " + Fixed(leaving->collision_step, 3) + " m)";
+        prefix += "; ";
         chosen = &relaxed;
       }
     }
@@ -352,7 +379,7 @@ PathPlannerNode::Answer PathPlannerNode::Handle(Job& job) {
     if (!cache.known->Contains(goal.translation()))
       return refuse("goal " + Where(goal) + " is not in the known free space of " + map_name +
                     " (behind a frontier or unseen; allow_unknown explores)");
-    if (!cache.known->Contains(start.translation()))
+    if (!known->Contains(start.translation()))
       return refuse("start " + Where(start) + " is not in the known free space of " + map_name);
   }
   const Se2PlanResult result = planner.Plan(start, goal, limits);

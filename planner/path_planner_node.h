@@ -11,8 +11,8 @@
 //                 bounded by `deadline` (SearchLimits::stop_requested) and the answer names
 //                 the bound that stopped it.
 //   CONTOUR_MAP   plain or zlib (common/node/contour_map_conversions.h). One Se2Planner per
-//                 (map version, clearance, allow_unknown, allow_reverse), so repeated requests to a goal on
-//                 one map reuse its cached heuristic. A new version re-checks the rest of the
+//                 (map version, clearance, collision step, allow_unknown, allow_reverse), so
+//                 repeated requests to a goal on one map reuse its cached heuristic. A new version re-checks the rest of the
 //                 active path (from the latest POSE's closest point on it) with
 //                 Se2Planner::PieceCollides; when blocked the node replans from the latest
 //                 pose to the same goal and publishes a PATH with the same request_id and the
@@ -26,6 +26,10 @@
 //   A repeated request_id (the coordinator re-sends until it hears the answer) is answered
 //   again with the stored answer, or ignored while its search runs: never planned twice.
 //   PATH          path_t: feasible with the motions, or feasible = false and the one-line reason.
+// A start the planner finds in collision is where the vehicle stands: frontiers through its
+// footprint are ignored (FrontiersAwayFrom), and within the clearance of a wall it leaves with
+// the clearance it has (Se2Planner::LeavingOptions); the status says which. Only a footprint
+// in contact with a wall is refused.
 // A request with allow_reverse = false is planned with reversing priced at 100 m a metre and
 // refused when the path found still reverses.
 

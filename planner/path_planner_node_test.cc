@@ -145,6 +145,57 @@ TEST(PathPlannerNode, AStartWithinTheClearanceLeavesWithTheClearanceItHas) {
   EXPECT_NE(touching.status.find("start"), std::string::npos) << touching.status;
 }
 
+// Closer than the half collision step (a tracker stops where its own check says contact, so
+// a vehicle can stand a centimetre from a wall the map grew): clearance 0 with a step fine
+// enough, and the path is never in contact (the checker samples every 2 mm).
+TEST(PathPlannerNode, AStartACentimetreFromAWallLeavesWithAFinerStep) {
+  Harness h;
+  const std::vector<ContourPolyline> map = {Room(), Box(8, 6, 20, 12)};
+  h.fake.bus().InjectMessage("CONTOUR_MAP", MapMessage(1, map, h.now()));
+  const double beside = 6.0 - 1.65 - 0.0123;  // its left side 12.3 mm below the pillar
+  h.fake.bus().InjectMessage("PATH_REQUEST", Request(10, {14.0, beside, 0.0}, {33, 16, kPi / 2}, h.now()));
+  const std::vector<path_t> paths = h.WaitForPaths(1);
+  ASSERT_EQ(paths.size(), 1u);
+  const path_t& p = paths[0];
+  ASSERT_TRUE(p.feasible) << p.status;
+  EXPECT_NE(p.status.find("start within 0.10 m of a wall: planned with a clearance of 0.00 m (checked every 0.022 m)"),
+            std::string::npos)
+      << p.status;
+  testing::PathCheckReport report = Check(p, ContourMapSegments(ContourMapMessage{0, 1, 1, map}), 0.0);
+  EXPECT_TRUE(report.ok) << report.problem;
+  EXPECT_GT(report.min_clearance, 0.0);
+  EXPECT_NEAR(p.segments.back().end.x, 33.0, 0.1);
+  EXPECT_NEAR(p.segments.back().end.y, 16.0, 0.1);
+}
+
+// A vehicle standing across a frontier (MakeContourFreeSpace closed a gap in the wall through
+// where the ladar looked from) is not in collision: the frontier is ignored for its start, the
+// answer says so, and the path keeps the clearance from every wall. The goal must still be in
+// the known free space.
+TEST(PathPlannerNode, AFrontierThroughTheVehicleIsNoWallWhereItStands) {
+  Harness h;
+  // The room with its south wall unseen from x = 12 to 16 (the frontier (12, 0) -> (16, 0)),
+  // and a pillar 20 m south of it: the map's box holds the vehicle standing in the gap.
+  const std::vector<ContourPolyline> map = {Poly({{16, 0}, {40, 0}, {40, 24}, {0, 24}, {0, 0}, {12, 0}}, false),
+                                            Box(30, -21, 31, -20)};
+  h.fake.bus().InjectMessage("CONTOUR_MAP", MapMessage(1, map, h.now()));
+  const Pose2 in_the_gap(14, 3, kPi / 2);  // from y = -2 to 8, 0.35 m from the wall's ends
+  h.fake.bus().InjectMessage("PATH_REQUEST", Request(11, in_the_gap, {33, 16, kPi / 2}, h.now()));
+  h.fake.bus().InjectMessage("PATH_REQUEST", Request(12, in_the_gap, {14, -10, kPi / 2}, h.now()));  // unknown
+  const std::vector<path_t> paths = h.WaitForPaths(2);
+  ASSERT_EQ(paths.size(), 2u);
+  const path_t& p = paths[0].request_id == 11 ? paths[0] : paths[1];
+  const path_t& outside = paths[0].request_id == 11 ? paths[1] : paths[0];
+  ASSERT_TRUE(p.feasible) << p.status;
+  EXPECT_EQ(p.status.rfind("1 frontier(s) through the vehicle's footprint ignored; ok: ", 0), 0u) << p.status;
+  const auto report = Check(p, ContourMapSegments(ContourMapMessage{0, 1, 1, map}), 0.1);
+  EXPECT_TRUE(report.ok) << report.problem;
+  EXPECT_NEAR(p.segments.back().end.x, 33.0, 0.1);
+  EXPECT_NEAR(p.segments.back().end.y, 16.0, 0.1);
+  EXPECT_FALSE(outside.feasible);
+  EXPECT_NE(outside.status.find("is not in the known free space"), std::string::npos) << outside.status;
+}
+
 // A request before any map, within first_map_wait of the start, is left for its repeat (the
 // coordinator repeats; a restarted planner gets the map within the mapper's republish period);
 // its repeat after the map is planned; after the wait, "no map" is answered at once.

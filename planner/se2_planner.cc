@@ -240,15 +240,24 @@ Se2Planner::Se2Planner(std::vector<Segment> map, Footprint footprint, Se2Planner
 
 bool Se2Planner::PoseFree(const Pose2& pose) const { return checker_ && !checker_->Collides(pose); }
 
-double Se2Planner::ClearanceFor(const Pose2& pose) const {
-  if (!checker_) return -1.0;
-  if (PoseFree(pose)) return options_.clearance;
+std::optional<Se2PlannerOptions> Se2Planner::LeavingOptions(const Pose2& pose) const {
+  if (!checker_) return std::nullopt;
+  if (PoseFree(pose)) return options_;
   // Within the margin: the spare is 0 and the exact distance is measured with no margin.
   const FootprintCollisionChecker bare(*walls_, *field_, footprint_, 0.0, options_.collision_discs);
   const double distance = bare.ExactSpare(pose, std::cos(pose.theta), std::sin(pose.theta));
-  if (distance < 0.0) return -1.0;
+  constexpr double kRounding = 0.005;  // m: clearances in steps of 5 mm, one step below what it has
+  constexpr double kSpare = 0.001;     // m the pose keeps beyond the margin of the relaxed planner
+  Se2PlannerOptions leaving = options_;
   const double room = distance - 0.5 * options_.collision_step;
-  return std::max(0.0, std::floor(room / 0.005) * 0.005 - 0.005);
+  leaving.clearance = std::max(0.0, std::floor(room / kRounding) * kRounding - kRounding);
+  if (room - leaving.clearance >= kSpare) return leaving;
+  // Within the half-step: the polygon swept between checked poses keeps clear of the walls
+  // with a finer step (in whole millimetres).
+  leaving.collision_step = std::floor(2.0 * (distance - kSpare) / 0.001) * 0.001;
+  if (!(leaving.collision_step >= kLeastCollisionStep)) return std::nullopt;
+  leaving.collision_step = std::min(leaving.collision_step, options_.collision_step);
+  return leaving;
 }
 
 bool Se2Planner::PieceCollides(const Pose2& from, const MotionPiece& piece) const {

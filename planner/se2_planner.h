@@ -23,6 +23,7 @@
 #include <deque>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -130,11 +131,15 @@ class Se2Planner {
 
   // Is the pose clear of the walls with the requested clearance (plus the sampling half-step)?
   bool PoseFree(const Pose2& pose) const;
-  // The clearance to ask of a planner for which `pose` is free: the requested one when it is;
-  // else what the pose has from the walls less the sampling half-step (rounded down to 5 mm),
-  // at least 0; negative when the footprint touches a wall. (A vehicle that stopped short
-  // within the clearance of a wall leaves with the clearance it has.)
-  double ClearanceFor(const Pose2& pose) const;
+  // The options of a planner for which `pose` is free, so that a vehicle standing there (it
+  // stopped short where the map grew around it, or a cut's ribs are beside it) leaves with the
+  // clearance it has: these options when the pose is free; else the clearance the pose has
+  // from the walls less the sampling half-step (rounded down to 5 mm); within that half-step
+  // of a wall, clearance 0 and a collision step fine enough (at least kLeastCollisionStep)
+  // that the pose is free. nullopt when the footprint touches a wall, or comes within half
+  // the least step of one: never planned in contact.
+  std::optional<Se2PlannerOptions> LeavingOptions(const Pose2& pose) const;
+  static constexpr double kLeastCollisionStep = 0.002;  // m
   // Does any checked pose along the piece, driven from `from`, collide?
   bool PieceCollides(const Pose2& from, const MotionPiece& piece) const;
 

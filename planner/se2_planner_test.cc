@@ -698,6 +698,43 @@ TEST(Se2PlannerTest, BacksIntoTheCrosscutWithAMultiPointManeuver) {
   EXPECT_GT(r.path.Length(), 16.0);
 }
 
+// A vehicle that stopped within the clearance of a wall leaves with what it has: the clearance
+// less the sampling half-step (in 5 mm steps), or within that half-step clearance 0 and a
+// finer collision step; every path from there keeps the clearance it was planned with (the
+// independent checker samples every 2 mm). Contact, or within a millimetre of it, is refused.
+TEST(Se2PlannerTest, AVehicleWithinTheClearanceOfAWallLeavesWithWhatItHas) {
+  // A room with a pillar; the miner stopped below the pillar's south face (y = 6), heading east.
+  std::vector<Segment> room = planner_test::Room(40, 24);
+  planner_test::AddBox(room, 8, 6, 20, 12);
+  Se2PlannerOptions o;
+  o.clearance = 0.1;
+  const Se2Planner planner(room, Footprint::Rectangle(3.3, 10.0), o);
+  const Pose2 goal(33, 16, kPi / 2);
+  const auto below_the_pillar = [](double gap) { return Pose2(14, 6.0 - 1.65 - gap, 0); };
+  struct Case {
+    double gap, clearance, step;  // m from the pillar; the options expected
+  };
+  for (const Case& c : {Case{0.5, 0.1, 0.05}, Case{0.083, 0.05, 0.05}, Case{0.032, 0.0, 0.05},
+                        Case{0.0202, 0.0, 0.038}, Case{0.0042, 0.0, 0.006}}) {
+    const Pose2 start = below_the_pillar(c.gap);
+    const std::optional<Se2PlannerOptions> leaving = planner.LeavingOptions(start);
+    ASSERT_TRUE(leaving.has_value()) << c.gap;
+    EXPECT_NEAR(leaving->clearance, c.clearance, 1e-9) << c.gap;
+    EXPECT_NEAR(leaving->collision_step, c.step, 1e-9) << c.gap;
+    const Se2Planner leaves(room, planner.footprint(), *leaving);
+    ASSERT_TRUE(leaves.PoseFree(start)) << c.gap;
+    const Se2PlanResult r = leaves.Plan(start, goal);
+    ASSERT_EQ(r.status, SearchStatus::kFound) << c.gap << ": " << r.reason;
+    testing::PathCheckSettings st = CheckerFor(leaves);
+    st.sample_step = 0.002;
+    const auto report = testing::CheckPath(room, start, AsChecked(r.path), st);
+    EXPECT_TRUE(report.ok) << c.gap << ": " << report.problem;
+    EXPECT_GT(report.min_clearance, 0.0) << c.gap;
+  }
+  for (const double gap : {0.001, 0.0, -0.02})
+    EXPECT_FALSE(planner.LeavingOptions(below_the_pillar(gap)).has_value()) << gap;
+}
+
 TEST(Se2PlannerTest, EveryBadRequestGetsAStatusAndAReason) {
   const std::vector<Segment> room = planner_test::Room(40, 30);
   const Footprint miner = Footprint::Rectangle(3.3, 10.0);

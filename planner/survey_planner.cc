@@ -241,8 +241,8 @@ SurveyDecision PlanNextStation(const TaskMap& map_in, const Footprint& footprint
   std::optional<Se2Planner> chosen;
   chosen.emplace(map.Boundary(), footprint, po);
   if (chosen->setup_error().empty() && !chosen->PoseFree(r.vehicle)) {
-    if (const double has = chosen->ClearanceFor(r.vehicle); has >= 0.0) {
-      po.clearance = has;
+    if (const std::optional<Se2PlannerOptions> leaving = chosen->LeavingOptions(r.vehicle)) {
+      po = *leaving;
       chosen.emplace(map.Boundary(), footprint, po);
     }
   }
@@ -253,6 +253,7 @@ SurveyDecision PlanNextStation(const TaskMap& map_in, const Footprint& footprint
   // when the next scans move the walls a few centimetres.
   Se2PlannerOptions roomy_options = po;
   roomy_options.clearance = r.clearance + o.station_margin;
+  roomy_options.collision_step = planner_options.collision_step;  // not a leaving step: stations are roomy
   const Se2Planner roomy(map.Boundary(), footprint, roomy_options);
   if (!planner.PoseFree(r.vehicle))
     return finish(PlanStatus::kFailed, "the vehicle at " + PoseText(r.vehicle) +

@@ -149,7 +149,7 @@ struct SurveyDecision {
   int plans = 0;                 // path plans made
   int64_t expansions = 0;        // their expansions
   // m the paths from the vehicle keep: the request's clearance, less when the vehicle stood
-  // within it (what it had, Se2Planner::ClearanceFor).
+  // within it (what it had, Se2Planner::LeavingOptions).
   double path_clearance = 0.0;
 };
 

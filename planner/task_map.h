@@ -26,10 +26,9 @@ struct TaskMap {
   ContourFreeSpace AsFreeSpace() const { return {walls, frontiers, 0, 0}; }
 };
 
-// The map without the frontiers that come within `margin` of the footprint at `pose`: the
-// vehicle stands where the ladar has looked from, so a frontier through it is not the edge of
-// what the ladar saw (MakeContourFreeSpace's pairing of contour ends can draw one along a
-// wall across a crossing). `dropped` (may be null) counts them.
+// The map without the frontiers that come within `margin` of the footprint at `pose`
+// (FrontiersAwayFrom: the vehicle stands where the ladar has looked from). `dropped` (may be
+// null) counts them.
 TaskMap WithoutFrontiersAt(const TaskMap& map, const Footprint& footprint, const Pose2& pose, double margin,
                            int* dropped = nullptr);
 
