@@ -94,6 +94,15 @@ TEST(SegmentIndexTest, CellCoordinatesNeverOverflow) {
   EXPECT_EQ(ClampedFloor(-1e300, -5, 5), -5);
   EXPECT_EQ(ClampedFloor(INFINITY, -5, 5), 5);
   EXPECT_EQ(ClampedFloor(std::nan(""), -5, 5), -5);
+  // Every value near the integers and the bounds, against std::floor clamped.
+  for (double v = -7.0; v <= 7.0; v += 0.03125)
+    for (const double e : {-1e-12, 0.0, 1e-12}) {
+      const double x = v + e;
+      EXPECT_EQ(ClampedFloor(x, -5, 5), static_cast<int>(std::clamp(std::floor(x), -5.0, 5.0))) << x;
+    }
+  EXPECT_EQ(ClampedFloor(-0.0, -5, 5), 0);
+  EXPECT_EQ(ClampedFloor(2147483647.5, 0, 2147483647), 2147483647);
+  EXPECT_EQ(ClampedFloor(-2147483648.5, -2147483647 - 1, 0), -2147483647 - 1);
   GridFrame f;
   f.x0 = -1.0;
   f.cell = 0.5;

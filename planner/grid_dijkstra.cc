@@ -18,37 +18,53 @@ std::vector<double> GridDistancesFrom(const OccupancyGrid& grid, GridCell source
 LazyGridDistances::LazyGridDistances(const OccupancyGrid& grid, GridCell source)
     : grid_(grid),
       source_(source),
-      d_(grid.blocked.size(), std::numeric_limits<double>::infinity()),
-      done_(grid.blocked.size(), 0) {
+      tiles_x_(static_cast<size_t>((grid.width + kTile - 1) >> kTileBits)),
+      tiles_(tiles_x_ * static_cast<size_t>((grid.height + kTile - 1) >> kTileBits)) {
   if (!grid.Free(source.x, source.y)) return;
-  d_[grid.Index(source.x, source.y)] = 0.0;
+  const CellRef r = Ref(source.x, source.y);
+  TileAt(r.tile).d[r.k] = 0.0;
   open_.push({0.0, grid.Index(source.x, source.y)});
+}
+
+LazyGridDistances::Tile& LazyGridDistances::TileAt(size_t tile) {
+  std::unique_ptr<Tile>& t = tiles_[tile];
+  if (!t) {
+    t.reset(new Tile);  // default-initialised: filled below, once
+    t->d.fill(std::numeric_limits<double>::infinity());
+    t->done.fill(0);
+    ++allocated_;
+  }
+  return *t;
 }
 
 double LazyGridDistances::Distance(int x, int y) {
   if (x < 0 || y < 0 || x >= grid_.width || y >= grid_.height || !grid_.Free(x, y))
     return std::numeric_limits<double>::infinity();
-  const size_t target = grid_.Index(x, y);
-  while (!done_[target] && !open_.empty()) {
+  const CellRef target = Ref(x, y);
+  Tile& target_tile = TileAt(target.tile);
+  while (!target_tile.done[target.k] && !open_.empty()) {
     const auto [g, c] = open_.top();
     open_.pop();
-    if (done_[c] || g > d_[c]) continue;
-    done_[c] = 1;
-    ++settled_;
     const int cx = static_cast<int>(c % static_cast<size_t>(grid_.width));
     const int cy = static_cast<int>(c / static_cast<size_t>(grid_.width));
+    const CellRef cr = Ref(cx, cy);
+    Tile& ct = *tiles_[cr.tile];  // allocated when the cell was queued
+    if (ct.done[cr.k] || g > ct.d[cr.k]) continue;
+    ct.done[cr.k] = 1;
+    ++settled_;
     for (int dy = -1; dy <= 1; ++dy)
       for (int dx = -1; dx <= 1; ++dx) {
         if ((dx == 0 && dy == 0) || !GridMoveAllowed(grid_, cx, cy, dx, dy)) continue;
-        const size_t n = grid_.Index(cx + dx, cy + dy);
+        const CellRef nr = Ref(cx + dx, cy + dy);
+        double& nd = TileAt(nr.tile).d[nr.k];
         const double ng = g + (dx != 0 && dy != 0 ? std::numbers::sqrt2 : 1.0);
-        if (ng < d_[n]) {
-          d_[n] = ng;
-          open_.push({ng, n});
+        if (ng < nd) {
+          nd = ng;
+          open_.push({ng, grid_.Index(cx + dx, cy + dy)});
         }
       }
   }
-  return done_[target] ? d_[target] : std::numeric_limits<double>::infinity();
+  return target_tile.done[target.k] ? target_tile.d[target.k] : std::numeric_limits<double>::infinity();
 }
 
 LazyHeadingGridDistances::LazyHeadingGridDistances(const OccupancyGrid& grid, GridCell source, int source_heading,
