@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "common/pose2.h"
+
 namespace minenav {
 
 struct Footprint {
@@ -14,6 +16,13 @@ struct Footprint {
 
   // width (m, along y) x length (m, along x), centred on the pose.
   static Footprint Rectangle(double width, double length);
+  // The polygon placed at `pose` (m, map frame).
+  std::vector<Eigen::Vector2d> At(const Pose2& pose) const {
+    std::vector<Eigen::Vector2d> placed;
+    placed.reserve(vertices.size());
+    for (const Eigen::Vector2d& v : vertices) placed.push_back(pose * v);
+    return placed;
+  }
 };
 
 // "" when usable, else one line: at least 3 finite vertices, non-zero area, the pose's

@@ -345,11 +345,9 @@ PathPlannerNode::Answer PathPlannerNode::Handle(Job& job) {
   std::unique_ptr<KnownFreeSpace> own_known;
   std::unique_ptr<Se2Planner> own_planner;
   if (chosen->setup_error().empty() && !chosen->PoseFree(start) && !r.allow_unknown) {
-    std::vector<Eigen::Vector2d> polygon;
-    for (const Eigen::Vector2d& v : footprint_.vertices) polygon.push_back(start * v);
     int dropped = 0;
-    std::vector<Segment> frontiers =
-        FrontiersAwayFrom(cache.space->frontiers, polygon, clearance + options_.planner.collision_step, &dropped);
+    std::vector<Segment> frontiers = FrontiersAwayFrom(cache.space->frontiers, footprint_.At(start),
+                                                       clearance + options_.planner.collision_step, &dropped);
     if (dropped > 0) {
       own_space = ContourFreeSpace{cache.space->walls, std::move(frontiers), 0, 0};
       own_known = std::make_unique<KnownFreeSpace>(*own_space, options_.free_space);

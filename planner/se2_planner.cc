@@ -252,11 +252,10 @@ std::optional<Se2PlannerOptions> Se2Planner::LeavingOptions(const Pose2& pose) c
   const double room = distance - 0.5 * options_.collision_step;
   leaving.clearance = std::max(0.0, std::floor(room / kRounding) * kRounding - kRounding);
   if (room - leaving.clearance >= kSpare) return leaving;
-  // Within the half-step: the polygon swept between checked poses keeps clear of the walls
-  // with a finer step (in whole millimetres).
+  // Within the half-step (the clearance is 0 here): the polygon swept between checked poses
+  // keeps clear of the walls with a finer step (in whole millimetres, below the half-step).
   leaving.collision_step = std::floor(2.0 * (distance - kSpare) / 0.001) * 0.001;
   if (!(leaving.collision_step >= kLeastCollisionStep)) return std::nullopt;
-  leaving.collision_step = std::min(leaving.collision_step, options_.collision_step);
   return leaving;
 }
 

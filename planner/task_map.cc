@@ -12,10 +12,8 @@ std::vector<Segment> TaskMap::Boundary() const {
 
 TaskMap WithoutFrontiersAt(const TaskMap& map, const Footprint& footprint, const Pose2& pose, double margin,
                            int* dropped) {
-  std::vector<Eigen::Vector2d> polygon;
-  for (const Eigen::Vector2d& v : footprint.vertices) polygon.push_back(pose * v);
   TaskMap out = map;
-  out.frontiers = FrontiersAwayFrom(map.frontiers, polygon, margin, dropped);
+  out.frontiers = FrontiersAwayFrom(map.frontiers, footprint.At(pose), margin, dropped);
   return out;
 }
 

@@ -11,9 +11,7 @@ namespace minenav {
 namespace {
 
 SvgPolyline Outline(const Footprint& footprint, const Pose2& pose) {
-  SvgPolyline p{{}, true};
-  for (const Eigen::Vector2d& v : footprint.vertices) p.points.push_back(pose * v);
-  return p;
+  return SvgPolyline{footprint.At(pose), true};
 }
 
 // A dashed two-pose trajectory per segment (how PathScene draws frontiers); the first labelled.

@@ -123,8 +123,7 @@ TrackerMap::TrackerMap(std::vector<Segment> segments, const Footprint& footprint
       circumscribed_(CircumscribedRadius(footprint_)) {}
 
 double TrackerMap::Clearance(const Pose2& pose, double cap) const {
-  std::vector<Eigen::Vector2d> world;
-  for (const Eigen::Vector2d& v : footprint_.vertices) world.push_back(pose * v);
+  const std::vector<Eigen::Vector2d> world = footprint_.At(pose);
   double best = cap;
   walls_.ForEachNear(pose.translation(), circumscribed_ + cap, [&](int i) {
     const Segment& w = walls_.segments()[static_cast<size_t>(i)];
