@@ -57,6 +57,7 @@ struct Outcome {
   bool found = false, checked = false;
   double cold_s = 0.0, warm_s = 0.0, length = 0.0;
   int64_t expansions = 0, states = 0;
+  int64_t pose_checks = 0, exact_tests = 0;  // poses checked for collision; of them, by the exact test
   int reversals = 0;
   std::string status;
 };
@@ -119,6 +120,8 @@ int Run(int argc, char** argv) {
       o.found = r.status == minenav::SearchStatus::kFound;
       o.expansions = r.expansions;
       o.states = r.states;
+      o.pose_checks = r.collisions.free_by_field + r.collisions.blocked_by_field + r.collisions.exact_tests;
+      o.exact_tests = r.collisions.exact_tests;
       if (!o.found) {
         std::fprintf(stderr, "%s %zu: %s\n", q.scenario.c_str(), i, r.reason.c_str());
         continue;
@@ -146,12 +149,12 @@ int Run(int argc, char** argv) {
   j["setup_s_median"] = bench::Median(setup_s);
   std::printf("planner_bench: %d mines of 4 x 6 pillars, %zu SE(2) requests, planner setup median %.3f s\n", seeds,
               requests.size(), bench::Median(setup_s));
-  std::printf("%-10s %4s %6s %9s %9s %9s %9s %9s %8s %6s %9s %7s\n", "scenario", "n", "found", "cold med", "cold p95",
-              "cold max", "warm med", "expans.", "length", "rev.", "states", "MB");
-  std::printf("%-10s %4s %6s %9s %9s %9s %9s %9s %8s %6s %9s %7s\n", "", "", "", "(ms)", "(ms)", "(ms)", "(ms)", "(med)",
-              "(m,med)", "(med)", "(max)", "(max)");
+  std::printf("%-10s %4s %6s %9s %9s %9s %9s %9s %8s %6s %9s %7s %9s %7s\n", "scenario", "n", "found", "cold med",
+              "cold p95", "cold max", "warm med", "expans.", "length", "rev.", "states", "MB", "checks", "exact");
+  std::printf("%-10s %4s %6s %9s %9s %9s %9s %9s %8s %6s %9s %7s %9s %7s\n", "", "", "", "(ms)", "(ms)", "(ms)", "(ms)",
+              "(med)", "(m,med)", "(med)", "(max)", "(max)", "(med)", "(%,med)");
   for (const std::string name : {"box_cut", "slab_cut", "back_out", "turn", "long_entry", "long"}) {
-    std::vector<double> cold, warm, expansions, length, reversals;
+    std::vector<double> cold, warm, expansions, length, reversals, checks, exact_share;
     double states = 0.0;
     int n = 0, ok = 0;
     if (!only.empty() && ("," + only + ",").find("," + name + ",") == std::string::npos) continue;
@@ -162,6 +165,8 @@ int Run(int argc, char** argv) {
       cold.push_back(1e3 * o.cold_s);
       if (o.found) warm.push_back(1e3 * o.warm_s);
       expansions.push_back(static_cast<double>(o.expansions));
+      checks.push_back(static_cast<double>(o.pose_checks));
+      if (o.pose_checks > 0) exact_share.push_back(100.0 * static_cast<double>(o.exact_tests) / static_cast<double>(o.pose_checks));
       states = std::max(states, static_cast<double>(o.states));
       if (!(o.found && o.checked)) continue;
       ++ok;
@@ -169,9 +174,10 @@ int Run(int argc, char** argv) {
       reversals.push_back(o.reversals);
     }
     const double mb = states * kBytesPerState / 1e6;
-    std::printf("%-10s %4d %6d %9.2f %9.2f %9.2f %9.2f %9.0f %8.1f %6.1f %9.0f %7.1f\n", name.c_str(), n, ok,
+    std::printf("%-10s %4d %6d %9.2f %9.2f %9.2f %9.2f %9.0f %8.1f %6.1f %9.0f %7.1f %9.0f %7.1f\n", name.c_str(), n, ok,
                 bench::Median(cold), Percentile(cold, 0.95), bench::Max(cold), bench::Median(warm),
-                bench::Median(expansions), bench::Median(length), bench::Median(reversals), states, mb);
+                bench::Median(expansions), bench::Median(length), bench::Median(reversals), states, mb,
+                bench::Median(checks), bench::Median(exact_share));
     j["se2"][name] = {{"requests", n},
                       {"success", ok},
                       {"cold_ms_median", bench::Median(cold)},
@@ -180,6 +186,8 @@ int Run(int argc, char** argv) {
                       {"warm_ms_median", bench::Median(warm)},
                       {"warm_ms_p95", Percentile(warm, 0.95)},
                       {"expansions_median", bench::Median(expansions)},
+                      {"pose_checks_median", bench::Median(checks)},
+                      {"exact_test_percent_median", bench::Median(exact_share)},
                       {"length_m_median", bench::Median(length)},
                       {"reversals_median", bench::Median(reversals)},
                       {"states_max", states},

@@ -225,7 +225,14 @@ class StaticSegmentIndex {
   // repeat an index; allocates nothing.
   template <typename Fn>
   void ForEachNear(const Eigen::Vector2d& p, double radius, Fn&& fn) const {
-    const CellRange r = CellsNear(p, p, radius);
+    ForEachNearBox(p, p, radius, std::forward<Fn>(fn));
+  }
+  // The same for the box [lo - radius, hi + radius]: a superset of the segments within
+  // `radius` of any point of [lo, hi] (a footprint's box in the world frame asks for fewer
+  // cells than the circle round it).
+  template <typename Fn>
+  void ForEachNearBox(const Eigen::Vector2d& lo, const Eigen::Vector2d& hi, double radius, Fn&& fn) const {
+    const CellRange r = CellsNear(lo, hi, radius);
     for (int iy = r.y_lo; iy <= r.y_hi; ++iy)
       for (int ix = r.x_lo; ix <= r.x_hi; ++ix)
         for (const uint32_t i : CellSegments(ix, iy)) fn(static_cast<int>(i));

@@ -415,6 +415,29 @@ TEST(StaticSegmentIndexTest, RadiusQueriesContainEverySegmentWithinTheRadius) {
   }
 }
 
+TEST(StaticSegmentIndexTest, BoxQueriesContainEverySegmentWithinTheRadiusOfTheBox) {
+  // ForEachNearBox: every segment within r of some point of [lo, hi] (brute force: the
+  // box-to-segment distance), with boxes from a point to wider than a cell, long and thin.
+  const std::vector<Segment> world = RandomWorld(10);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> uo(-8.0, 48.0), us(0.0, 6.0), ur(0.0, 2.0);
+  for (double cell : {0.0, 0.3, 2.0}) {
+    const StaticSegmentIndex grid(world, cell);
+    for (int q = 0; q < 1000; ++q) {
+      const Eigen::Vector2d lo(uo(rng), uo(rng));
+      const Eigen::Vector2d hi = lo + Eigen::Vector2d(us(rng), q % 3 == 0 ? 0.0 : us(rng));
+      const double r = q % 10 == 0 ? 0.0 : ur(rng);
+      std::set<int> truth, visited;
+      for (size_t i = 0; i < world.size(); ++i)
+        if (BoxSegmentMinDistance(lo, hi, world[i]) <= r) truth.insert(static_cast<int>(i));
+      grid.ForEachNearBox(lo, hi, r, [&](int i) {
+        if (BoxSegmentMinDistance(lo, hi, world[static_cast<size_t>(i)]) <= r) visited.insert(i);
+      });
+      ASSERT_EQ(visited, truth) << lo.transpose() << " .. " << hi.transpose() << " r " << r;
+    }
+  }
+}
+
 TEST(IncrementalSegmentIndexTest, RadiusQueriesContainEverySegmentWithinTheRadius) {
   std::mt19937 rng(9);
   const std::vector<Segment> world = RandomWorld(7);

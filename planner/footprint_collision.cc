@@ -109,7 +109,13 @@ double FootprintCollisionChecker::ExactSpare(const Pose2& pose, double c, double
   double nearest = reach;  // the least distance measured, up to margin + cap
   bool hit = false;
   const auto& segments = walls_.segments();
-  walls_.ForEachNear(pose.translation(), circumscribed_ + reach, [&](int i) {
+  // The walls listed near the polygon's box turned into the world (its axis-aligned box there:
+  // along an entry a third of the square round the circumscribed circle).
+  const Eigen::Vector2d mid = 0.5 * (box_lo_ + box_hi_), half = 0.5 * (box_hi_ - box_lo_);
+  const Eigen::Vector2d centre(pose.x + c * mid.x() - s * mid.y(), pose.y + s * mid.x() + c * mid.y());
+  const Eigen::Vector2d extent(std::abs(c) * half.x() + std::abs(s) * half.y(),
+                               std::abs(s) * half.x() + std::abs(c) * half.y());
+  walls_.ForEachNearBox(centre - extent, centre + extent, reach, [&](int i) {
     if (hit) return;
     const Segment& w = segments[static_cast<size_t>(i)];
     const Eigen::Vector2d da = w.a - pose.translation(), db = w.b - pose.translation();
