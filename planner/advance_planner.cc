@@ -86,7 +86,7 @@ void DeclareOptions(OptionScope s, AdvanceOptions& o) {
 
 AdvanceResult PlanAdvance(const TaskMap& map_in, const Footprint& footprint_in, const AdvanceRequest& r,
                           const AdvanceOptions& o, const Se2PlannerOptions& planner_options,
-                          const SearchLimits& limits) {
+                          const SearchLimits& limits, Se2PlannerCache* planners) {
   AdvanceResult result;
   TaskPlan& plan = result.plan;
   auto fail = [&](const std::string& why) {
@@ -220,17 +220,19 @@ AdvanceResult PlanAdvance(const TaskMap& map_in, const Footprint& footprint_in, 
   // leaves the vehicle (a cut leaves it where its MOVE put it: it trams straight back out).
   Se2PlannerOptions po = planner_options;
   po.clearance = r.clearance;
-  const Se2Planner planner(map.Boundary(), footprint, po);
+  const std::vector<Segment> walls = map.Boundary();
+  const std::shared_ptr<const Se2Planner> planner_kept = PlannerFor(planners, walls, footprint, po);
+  const Se2Planner& planner = *planner_kept;
   if (!planner.setup_error().empty()) return fail("path planner: " + planner.setup_error());
   std::unique_ptr<KnownFreeSpace> known;
   if (map.oriented) known = std::make_unique<KnownFreeSpace>(map.AsFreeSpace());
   // A vehicle within the clearance of a wall (it stopped short where the map grew around it)
   // leaves with the clearance it has: its first maneuver is checked as the path planner plans
   // it (never in contact with the map); the others keep the clearance.
-  std::optional<Se2Planner> leaving;
+  std::shared_ptr<const Se2Planner> leaving;
   if (!planner.PoseFree(r.vehicle))
     if (const std::optional<Se2PlannerOptions> leaving_options = planner.LeavingOptions(r.vehicle)) {
-      leaving.emplace(map.Boundary(), footprint, *leaving_options);
+      leaving = PlannerFor(planners, walls, footprint, *leaving_options);
       result.leaving_clearance = leaving_options->clearance;
     }
   SearchLimits leg_limits = limits;

@@ -47,6 +47,7 @@
 #include "planner/entry_geometry.h"
 #include "planner/footprint.h"
 #include "planner/se2_planner.h"
+#include "planner/se2_planner_cache.h"
 #include "planner/search_limits.h"
 #include "planner/task.h"
 #include "planner/task_map.h"
@@ -111,8 +112,10 @@ struct AdvanceResult {
   std::optional<double> leaving_clearance;
 };
 
+// `planners`: where the path planners on this map are kept between requests (null: built
+// for this request alone).
 AdvanceResult PlanAdvance(const TaskMap& map, const Footprint& footprint, const AdvanceRequest& request,
                           const AdvanceOptions& options, const Se2PlannerOptions& planner_options,
-                          const SearchLimits& limits = {});
+                          const SearchLimits& limits = {}, Se2PlannerCache* planners = nullptr);
 
 }  // namespace minenav

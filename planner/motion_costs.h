@@ -14,6 +14,8 @@ struct MotionCosts {
   double turn_in_place_per_rad = 2.0;
   // m of cost for each change between forward and reverse. Default 3.
   double direction_change = 3.0;
+
+  bool operator==(const MotionCosts&) const = default;
 };
 
 // The cost of one piece, driven after motion in direction `previous_direction` (+1

@@ -15,6 +15,7 @@
 #include "minenav/heartbeat_t.hpp"
 #include "minenav/pose_estimate_t.hpp"
 #include "planner/contour_map_contours.h"
+#include "planner/se2_planner_cache.h"
 
 namespace minenav {
 
@@ -39,20 +40,19 @@ struct PathPlannerNode::Answer {
   bool replanned = false;           // the active path was blocked by a new map
 };
 
-// Worker thread only.
-using PlannerKey = std::tuple<double, double, bool, bool>;
+constexpr size_t kMaxPlannersPerMap = 8;
 
+// Worker thread only.
 struct PathPlannerNode::PlannerCache {
   int64_t version = -1;
   std::unique_ptr<ContourFreeSpace> space;
   std::unique_ptr<KnownFreeSpace> known;
-  // (clearance, collision_step, allow_unknown, allow_reverse) -> planner on this version's walls.
-  std::map<PlannerKey, std::unique_ptr<Se2Planner>> planners;
+  // Planners on this version's boundary (with or without frontiers, or without those through
+  // a start) for the options requests asked (clearance, collision step, reverse factor).
+  Se2PlannerCache planners{kMaxPlannersPerMap};
 };
 
 namespace {
-
-constexpr size_t kMaxPlannersPerMap = 8;
 // Answers kept for repeated requests and for DRIVE_PATH (a mission holds a handful at a time).
 constexpr size_t kAnswersKept = 64;
 // A request that does not allow reversing: a metre reversed costs this many driven forward
@@ -258,25 +258,21 @@ PathPlannerNode::Answer PathPlannerNode::Handle(Job& job) {
     cache.version = job.map->version;
     cache.space = std::make_unique<ContourFreeSpace>(MakeContourFreeSpace(job.map->contours, options_.free_space));
     cache.known = std::make_unique<KnownFreeSpace>(*cache.space, options_.free_space);
-    cache.planners.clear();
+    cache.planners.Clear();
   }
   const double clearance = r.clearance > 0.0 ? r.clearance : options_.default_clearance;
   Se2PlannerOptions requested = options_.planner;
   requested.clearance = clearance;
   if (!r.allow_reverse) requested.costs.reverse_factor = std::max(requested.costs.reverse_factor, kNoReverseFactor);
-  auto planner_with = [&](const Se2PlannerOptions& po) -> const Se2Planner& {
-    const PlannerKey key(po.clearance, po.collision_step, r.allow_unknown, r.allow_reverse);
-    auto it = cache.planners.find(key);
-    if (it == cache.planners.end()) {
-      if (cache.planners.size() >= kMaxPlannersPerMap) cache.planners.clear();
-      ++planners_built_;
-      it = cache.planners
-               .emplace(key, std::make_unique<Se2Planner>(cache.space->Boundary(r.allow_unknown), footprint_, po))
-               .first;
-    }
-    return *it->second;
+  // The planners of this request (held: the cache may let one go while the request uses it).
+  std::vector<std::shared_ptr<const Se2Planner>> held;
+  auto planner_with = [&](const std::vector<Segment>& boundary, const Se2PlannerOptions& po) -> const Se2Planner& {
+    held.push_back(cache.planners.Get(boundary, footprint_, po));
+    planners_built_ = cache.planners.built();
+    return *held.back();
   };
-  const Se2Planner* chosen = &planner_with(requested);
+  const std::vector<Segment> boundary = cache.space->Boundary(r.allow_unknown);
+  const Se2Planner* chosen = &planner_with(boundary, requested);
   const std::string map_name = "map version " + std::to_string(job.map->version);
 
   Pose2 start = FromLcm(r.start);
@@ -338,12 +334,10 @@ PathPlannerNode::Answer PathPlannerNode::Handle(Job& job) {
   // Where the vehicle stands: a frontier through its footprint is no edge of what the ladar
   // saw (it looked from there), and within the clearance of a wall (the map grew around it
   // where it stopped short, or a cut's ribs beside it) it is not stuck: it leaves with the
-  // clearance it has, never in contact. The answer says so. Such a start gets planners of its
-  // own (not cached: they hold on to this start's map).
+  // clearance it has, never in contact. The answer says so.
   const KnownFreeSpace* known = cache.known.get();
   std::optional<ContourFreeSpace> own_space;
   std::unique_ptr<KnownFreeSpace> own_known;
-  std::unique_ptr<Se2Planner> own_planner;
   if (chosen->setup_error().empty() && !chosen->PoseFree(start) && !r.allow_unknown) {
     int dropped = 0;
     std::vector<Segment> frontiers = FrontiersAwayFrom(cache.space->frontiers, footprint_.At(start),
@@ -351,16 +345,14 @@ PathPlannerNode::Answer PathPlannerNode::Handle(Job& job) {
     if (dropped > 0) {
       own_space = ContourFreeSpace{cache.space->walls, std::move(frontiers), 0, 0};
       own_known = std::make_unique<KnownFreeSpace>(*own_space, options_.free_space);
-      own_planner = std::make_unique<Se2Planner>(own_space->Boundary(false), footprint_, requested);
       known = own_known.get();
-      chosen = own_planner.get();
+      chosen = &planner_with(own_space->Boundary(false), requested);
       prefix += std::to_string(dropped) + " frontier(s) through the vehicle's footprint ignored; ";
     }
   }
   if (chosen->setup_error().empty() && !chosen->PoseFree(start)) {
     if (const std::optional<Se2PlannerOptions> leaving = chosen->LeavingOptions(start)) {
-      if (own_space) own_planner = std::make_unique<Se2Planner>(own_space->Boundary(false), footprint_, *leaving);
-      const Se2Planner& relaxed = own_space ? *own_planner : planner_with(*leaving);
+      const Se2Planner& relaxed = planner_with(own_space ? own_space->Boundary(false) : boundary, *leaving);
       if (relaxed.PoseFree(start)) {
         prefix += "start within " + Fixed(clearance) + " m of a wall: planned with a clearance of " +
                   Fixed(leaving->clearance) + " m";

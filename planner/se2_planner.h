@@ -92,6 +92,8 @@ struct Se2PlannerOptions {
   double corridor_route_resolution = 1.0;  // m, cells of the route's grid. Default 1.
   int corridor_turn_expansions = 5000;    // expansions a leg of the route may take. Default 5,000.
   MotionCosts costs;
+
+  bool operator==(const Se2PlannerOptions&) const = default;  // every field equal (Se2PlannerCache)
 };
 
 // "" when usable, else one line naming the option.

@@ -205,7 +205,7 @@ PredictedView PredictView(const TaskMap& map, const Eigen::Vector2d& position, c
 
 SurveyDecision PlanNextStation(const TaskMap& map_in, const Footprint& footprint_in, const SurveyRequest& r,
                                const SurveyPlannerOptions& o, const Se2PlannerOptions& planner_options,
-                               const SearchLimits& limits) {
+                               const SearchLimits& limits, Se2PlannerCache* planners) {
   SurveyDecision d;
   d.path_clearance = r.clearance;
   auto finish = [&](PlanStatus status, const std::string& why) {
@@ -238,12 +238,12 @@ SurveyDecision PlanNextStation(const TaskMap& map_in, const Footprint& footprint
   // A vehicle within the clearance of a wall (it stopped short where the map grew around it)
   // leaves with the clearance it has (as the path planner does with such a start); the reason
   // says so.
-  std::optional<Se2Planner> chosen;
-  chosen.emplace(map.Boundary(), footprint, po);
+  const std::vector<Segment> walls = map.Boundary();
+  std::shared_ptr<const Se2Planner> chosen = PlannerFor(planners, walls, footprint, po);
   if (chosen->setup_error().empty() && !chosen->PoseFree(r.vehicle)) {
     if (const std::optional<Se2PlannerOptions> leaving = chosen->LeavingOptions(r.vehicle)) {
       po = *leaving;
-      chosen.emplace(map.Boundary(), footprint, po);
+      chosen = PlannerFor(planners, walls, footprint, po);
     }
   }
   d.path_clearance = po.clearance;
@@ -254,13 +254,14 @@ SurveyDecision PlanNextStation(const TaskMap& map_in, const Footprint& footprint
   Se2PlannerOptions roomy_options = po;
   roomy_options.clearance = r.clearance + o.station_margin;
   roomy_options.collision_step = planner_options.collision_step;  // not a leaving step: stations are roomy
-  const Se2Planner roomy(map.Boundary(), footprint, roomy_options);
+  const std::shared_ptr<const Se2Planner> roomy_planner = PlannerFor(planners, walls, footprint, roomy_options);
+  const Se2Planner& roomy = *roomy_planner;
   if (!planner.PoseFree(r.vehicle))
     return finish(PlanStatus::kFailed, "the vehicle at " + PoseText(r.vehicle) +
                                            " is in collision with the map (it touches a wall)");
   std::vector<Pose2> visited = r.visited;
   visited.push_back(r.vehicle);  // it has scanned where it stands
-  const CentreDistances centre(map.Boundary(), InscribedRadius(footprint) + po.clearance, r.vehicle.translation(),
+  const CentreDistances centre(walls, InscribedRadius(footprint) + po.clearance, r.vehicle.translation(),
                                planner_options.field_resolution);
 
   // The frontiers worth a station: long enough, not already looked at from close by.

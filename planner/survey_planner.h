@@ -64,6 +64,7 @@
 #include "planner/footprint.h"
 #include "planner/motion.h"
 #include "planner/se2_planner.h"
+#include "planner/se2_planner_cache.h"
 #include "planner/search_limits.h"
 #include "planner/task.h"
 #include "planner/task_map.h"
@@ -153,9 +154,11 @@ struct SurveyDecision {
   double path_clearance = 0.0;
 };
 
+// `planners`: where the path planners on this map are kept between requests (null: built
+// for this request alone).
 SurveyDecision PlanNextStation(const TaskMap& map, const Footprint& footprint, const SurveyRequest& request,
                                const SurveyPlannerOptions& options, const Se2PlannerOptions& planner_options,
-                               const SearchLimits& limits = {});
+                               const SearchLimits& limits = {}, Se2PlannerCache* planners = nullptr);
 
 // The prediction of a scan from `position` on `map` (walls and frontiers), as PlanNextStation
 // makes it (tests measure the overlap bound with it).

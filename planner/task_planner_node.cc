@@ -35,10 +35,19 @@ struct TaskPlannerNode::Answer {
   task_plan_t message{};
 };
 
-// Worker thread only: the task map of the snapshot in force (held, so its address is not reused).
+namespace {
+// Planners kept per map: the survey's (paths, roomy stations) and the advance's, each with
+// the default and a requested clearance, and the leaving ones of a vehicle near a wall.
+constexpr size_t kPlannersPerMap = 6;
+}  // namespace
+
+// Worker thread only: the task map of the snapshot in force (held, so its address is not
+// reused), and the path planners built on it (the survey's paths and stations, the advance's
+// maneuvers: a request on the same map with the same clearance builds none).
 struct TaskPlannerNode::MapCache {
   std::shared_ptr<const MapSnapshot> snapshot;
   TaskMap map;
+  Se2PlannerCache planners{kPlannersPerMap};
 };
 
 namespace {
@@ -239,6 +248,7 @@ TaskPlannerNode::Answer TaskPlannerNode::Plan(Job& job) {
     cache.snapshot = job.map;
     cache.map = job.map->is_line_map ? TaskMapFromSegments(job.map->segments)
                                      : TaskMapFromContours(job.map->contours, options_.free_space);
+    cache.planners.Clear();
   }
   // The deadline bounds the path planner's searches (live only: batch is repeatable).
   const auto deadline = t0 + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
@@ -264,13 +274,13 @@ TaskPlannerNode::Answer TaskPlannerNode::Plan(Job& job) {
     a.direction = r.face.theta;
     a.depth = r.depth;
     a.clearance = clearance;
-    answer.plan = PlanAdvance(cache.map, footprint_, a, options_.advance, options_.planner, limits).plan;
+    answer.plan = PlanAdvance(cache.map, footprint_, a, options_.advance, options_.planner, limits, &cache.planners).plan;
   } else {
     SurveyRequest s;
     s.vehicle = r.pose;
     s.clearance = clearance;
     s.visited = job.visited;
-    const SurveyDecision d = PlanNextStation(cache.map, footprint_, s, options_.survey, options_.planner, limits);
+    const SurveyDecision d = PlanNextStation(cache.map, footprint_, s, options_.survey, options_.planner, limits, &cache.planners);
     for (const StationCandidate& c : d.candidates)
       if (c.planned)
         MINENAV_LOG(kDebug) << "request " << r.request_id << ": candidate " << PoseText(c.pose) << " (bound "
@@ -278,6 +288,7 @@ TaskPlannerNode::Answer TaskPlannerNode::Plan(Job& job) {
                             << (c.rejected.empty() ? "reachable, cost " + FixedNumber(c.cost, 1) + " m" : c.rejected);
     answer.plan = d.plan;
   }
+  planners_built_ = cache.planners.built();
   if (deadline_passed && answer.plan.status == PlanStatus::kFailed)
     answer.plan.reason =
         "deadline: planning was stopped at " + FixedNumber(options_.deadline, 3) + " s: " + answer.plan.reason;

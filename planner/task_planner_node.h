@@ -28,6 +28,7 @@
 //   TASK_PLAN     task_plan_t: plan_id (the node's count), request_id, mission_id, status OK /
 //                 COMPLETE / FAILED, the one-line reason, the tasks.
 
+#include <atomic>
 #include <cstdint>
 #include <deque>
 #include <map>
@@ -102,6 +103,9 @@ class TaskPlannerNode {
   int64_t repeats() const { return repeats_; }  // requests answered again from memory
   int64_t plans() const { return next_plan_id_ - 1; }
   size_t visited() const { return visited_.size(); }
+  // Path planners built (any thread): a request on a map version that an earlier request
+  // planned on with the same clearance builds none.
+  int64_t planners_built() const { return planners_built_.load(); }
 
   struct Job;
   struct Answer;
@@ -127,6 +131,7 @@ class TaskPlannerNode {
   std::deque<int64_t> answered_order_;       // oldest first
   std::set<int64_t> pending_;                // request_ids being planned
   int64_t requests_ = 0, answers_ = 0, repeats_ = 0, next_plan_id_ = 1;
+  std::atomic<int64_t> planners_built_{0};
   // Worker-thread state: the task map of the contour map version in force.
   struct MapCache;
   std::unique_ptr<MapCache> cache_;

@@ -173,6 +173,26 @@ TEST(TaskPlannerNode, ARepeatedRequestIdGetsTheSamePlanWithoutPlanningAgain) {
   EXPECT_EQ(h.node.repeats(), 1);
 }
 
+TEST(TaskPlannerNode, RequestsOnOneMapVersionShareItsPlannersAndANewVersionBuildsItsOwn) {
+  Harness h;
+  h.fake.bus().InjectMessage("CONTOUR_MAP", MapMessage(1, {Poly(EntryOutline(), true)}));
+  h.fake.bus().InjectMessage("TASK_REQUEST", Advance(1, {18, 0, 0}, {36, 0, 0}));
+  ASSERT_EQ(h.WaitForPlans(1).size(), 1u);
+  const int64_t first = h.node.planners_built();
+  EXPECT_EQ(first, 1);  // the maneuvers' planner at the request's clearance
+  // Another advance on the same map, from elsewhere: the same planner plans it.
+  h.fake.bus().InjectMessage("TASK_REQUEST", Advance(2, {16, 0, 0}, {36, 0, 0}));
+  const std::vector<task_plan_t> plans = h.WaitForPlans(2);
+  ASSERT_EQ(plans.size(), 2u);
+  EXPECT_EQ(TaskPlanFromLcm(plans[1]).plan.status, PlanStatus::kOk) << plans[1].reason;
+  EXPECT_EQ(h.node.planners_built(), first);
+  // A new version of the map: planned on its own planner.
+  h.fake.bus().InjectMessage("CONTOUR_MAP", MapMessage(2, {Poly(EntryOutline(), true)}));
+  h.fake.bus().InjectMessage("TASK_REQUEST", Advance(3, {18, 0, 0}, {36, 0, 0}));
+  ASSERT_EQ(h.WaitForPlans(3).size(), 3u);
+  EXPECT_EQ(h.node.planners_built(), first + 1);
+}
+
 TEST(TaskPlannerNode, SurveyNextGivesAStationBeforeTheFrontierThenCompleteOnAClosedMap) {
   Harness h({}, Footprint::Rectangle(1.2, 2.0));  // a compact ladar carrier
   // A corridor 30 x 6 m seen from its west end: its east end is unknown (the open contour's
