@@ -41,8 +41,6 @@ using minenav::Se2PlanResult;
 using minenav::Segment;
 namespace bench = minenav::bench;
 
-constexpr double kBytesPerState = 80.0;  // search_limits.h: about 80 bytes per stored SE(2) state
-
 double Percentile(std::vector<double> v, double q) {
   if (v.empty()) return 0.0;
   std::sort(v.begin(), v.end());
@@ -56,7 +54,7 @@ using Request = bench::PlannerRequest;
 struct Outcome {
   bool found = false, checked = false;
   double cold_s = 0.0, warm_s = 0.0, length = 0.0;
-  int64_t expansions = 0, states = 0;
+  int64_t expansions = 0, states = 0, memory_bytes = 0;
   int64_t pose_checks = 0, exact_tests = 0;  // poses checked for collision; of them, by the exact test
   int reversals = 0;
   std::string status;
@@ -120,6 +118,7 @@ int Run(int argc, char** argv) {
       o.found = r.status == minenav::SearchStatus::kFound;
       o.expansions = r.expansions;
       o.states = r.states;
+      o.memory_bytes = r.memory_bytes;
       o.pose_checks = r.collisions.free_by_field + r.collisions.blocked_by_field + r.collisions.exact_tests;
       o.exact_tests = r.collisions.exact_tests;
       if (!o.found) {
@@ -155,7 +154,7 @@ int Run(int argc, char** argv) {
               "(med)", "(m,med)", "(med)", "(max)", "(max)", "(med)", "(%,med)");
   for (const std::string name : {"box_cut", "slab_cut", "back_out", "turn", "long_entry", "long"}) {
     std::vector<double> cold, warm, expansions, length, reversals, checks, exact_share;
-    double states = 0.0;
+    double states = 0.0, bytes = 0.0;
     int n = 0, ok = 0;
     if (!only.empty() && ("," + only + ",").find("," + name + ",") == std::string::npos) continue;
     for (size_t i = 0; i < requests.size(); ++i) {
@@ -168,12 +167,13 @@ int Run(int argc, char** argv) {
       checks.push_back(static_cast<double>(o.pose_checks));
       if (o.pose_checks > 0) exact_share.push_back(100.0 * static_cast<double>(o.exact_tests) / static_cast<double>(o.pose_checks));
       states = std::max(states, static_cast<double>(o.states));
+      bytes = std::max(bytes, static_cast<double>(o.memory_bytes));
       if (!(o.found && o.checked)) continue;
       ++ok;
       length.push_back(o.length);
       reversals.push_back(o.reversals);
     }
-    const double mb = states * kBytesPerState / 1e6;
+    const double mb = bytes / 1e6;  // the search's storage (Se2PlanResult::memory_bytes), largest request
     std::printf("%-10s %4d %6d %9.2f %9.2f %9.2f %9.2f %9.0f %8.1f %6.1f %9.0f %7.1f %9.0f %7.1f\n", name.c_str(), n, ok,
                 bench::Median(cold), Percentile(cold, 0.95), bench::Max(cold), bench::Median(warm),
                 bench::Median(expansions), bench::Median(length), bench::Median(reversals), states, mb,
@@ -191,7 +191,7 @@ int Run(int argc, char** argv) {
                       {"length_m_median", bench::Median(length)},
                       {"reversals_median", bench::Median(reversals)},
                       {"states_max", states},
-                      {"memory_mb_max_estimate", mb}};
+                      {"memory_mb_max", mb}};
   }
 
   if (grid) {

@@ -7,12 +7,12 @@
 #include <numbers>
 #include <queue>
 #include <sstream>
-#include <unordered_map>
 
 #include "common/config.h"
 #include "planner/analytic_shot.h"
 #include "planner/corridor_route.h"
 #include "planner/grid_dijkstra.h"
+#include "planner/state_table.h"
 
 namespace minenav {
 namespace {
@@ -28,17 +28,26 @@ std::string PoseText(const Pose2& p) {
 
 bool Finite(const Pose2& p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.theta); }
 
+// A stored state, 40 bytes: its heading is the bin's (theta = start theta + heading * bin,
+// the start's own for the start), its step the primitive's index.
 struct Node {
-  Pose2 pose;
+  double x = 0.0, y = 0.0;
   double g = 0.0;
   int32_t parent = -1;
-  Motion motion = Motion::kForward;  // the step that reached it
-  double amount = 0.0;
-  int8_t direction = 0;  // last drive direction on the way here (+1, -1, 0 none yet)
+  float spare = 0.0f;      // m every point of the polygon may move from here and stay free (rounded down)
+  int16_t heading = 0;     // heading bin
+  int8_t primitive = -1;   // the step that reached it (-1: the start)
+  int8_t direction = 0;    // last drive direction on the way here (+1, -1, 0 none yet)
   bool closed = false;
-  int16_t heading = 0;  // heading bin: theta = start theta + heading * bin
-  double spare = 0.0;   // m every point of the polygon may move from here and stay free
 };
+static_assert(sizeof(Node) <= 40);
+
+// A spare distance as a float no larger than it (it must stay a guarantee).
+float SpareDown(double spare) {
+  float f = static_cast<float>(spare);
+  if (static_cast<double>(f) > spare) f = std::nextafter(f, 0.0f);
+  return f;
+}
 
 // Does a sweep collide? Poses 1..n, `spacing` m apart for the farthest point of the polygon;
 // check(i) checks pose i. A pose free with s m to spare covers every pose within s + step / 2
@@ -481,6 +490,7 @@ namespace {
 void AddCounts(Se2PlanResult& into, const Se2PlanResult& other) {
   into.expansions += other.expansions;
   into.states = std::max(into.states, other.states);
+  into.memory_bytes = std::max(into.memory_bytes, other.memory_bytes);
   into.shots_tried += other.shots_tried;
   into.collisions.free_by_field += other.collisions.free_by_field;
   into.collisions.blocked_by_field += other.collisions.blocked_by_field;
@@ -679,19 +689,35 @@ Se2PlanResult Se2Planner::Search(const Pose2& start_in, const Pose2& goal_in, co
   const uint64_t goal_key = key(goal.x, goal.y, goal_heading);
 
   std::vector<Node> nodes;
-  std::unordered_map<uint64_t, int32_t> best;  // state cell -> its best node
-  best.reserve(4096);
-  std::priority_queue<OpenEntry> open;
+  nodes.reserve(1024);
+  StateTable best(1024);  // state cell -> its best node
+  // The open list: a binary heap (std::priority_queue's own push_heap / pop_heap) in a vector
+  // whose capacity the result's memory counts.
+  std::vector<OpenEntry> open;
+  open.reserve(1024);
+  const auto push = [&](const OpenEntry& entry) {
+    open.push_back(entry);
+    std::push_heap(open.begin(), open.end());
+  };
+  const auto stored = [&] {
+    result.states = static_cast<int64_t>(nodes.size());
+    result.memory_bytes = static_cast<int64_t>(nodes.capacity() * sizeof(Node) + best.bytes() +
+                                               open.capacity() * sizeof(OpenEntry));
+  };
   const PoseCheck at_start = checker_->Check(start);
-  nodes.push_back({start, 0.0, -1, Motion::kForward, 0.0, 0, false, 0, at_start.spare});
-  best[key(start.x, start.y, 0)] = 0;
-  open.push({heuristic(start, 0), 0.0, 0});
+  nodes.push_back({start.x, start.y, 0.0, -1, SpareDown(at_start.spare), 0, -1, 0, false});
+  best.Set(key(start.x, start.y, 0), 0);
+  push({heuristic(start, 0), 0.0, 0});
+  const auto pose_of = [&](const Node& n) {
+    return n.primitive < 0 ? start : Pose2(n.x, n.y, NormalizeAngle(start.theta + n.heading * bin));
+  };
 
   const auto path_to = [&](int32_t n, const std::vector<MotionPiece>& tail) {
     std::vector<MotionPiece> pieces;
     for (int32_t i = n; nodes[static_cast<size_t>(i)].parent != -1; i = nodes[static_cast<size_t>(i)].parent) {
       const Node& node = nodes[static_cast<size_t>(i)];
-      pieces.push_back({node.motion, node.amount, IsArc(node.motion) ? r : 0.0, node.pose});
+      const MotionPiece& step = primitives[static_cast<size_t>(node.primitive)];
+      pieces.push_back({step.motion, step.amount, step.radius, pose_of(node)});
     }
     std::reverse(pieces.begin(), pieces.end());
     pieces.insert(pieces.end(), tail.begin(), tail.end());
@@ -702,18 +728,19 @@ Se2PlanResult Se2Planner::Search(const Pose2& start_in, const Pose2& goal_in, co
   };
 
   while (!open.empty()) {
-    const OpenEntry e = open.top();
-    open.pop();
+    std::pop_heap(open.begin(), open.end());
+    const OpenEntry e = open.back();
+    open.pop_back();
     Node& current = nodes[static_cast<size_t>(e.node)];
     if (current.closed) continue;
     const SearchStatus limit = CheckLimits(limits, result.expansions, static_cast<int64_t>(nodes.size()));
     if (limit != SearchStatus::kFound) {
-      result.states = static_cast<int64_t>(nodes.size());
+      stored();
       return finish(limit, LimitReason(limit, result.expansions, result.states));
     }
     current.closed = true;
     ++result.expansions;
-    const Pose2 pose = current.pose;
+    const Pose2 pose = pose_of(current);
     const double g = current.g, spare = current.spare;
     const int direction = current.direction, heading = current.heading;
 
@@ -723,7 +750,7 @@ Se2PlanResult Se2Planner::Search(const Pose2& start_in, const Pose2& goal_in, co
       if (const AnalyticShot* shot = free_shot(pose, direction)) {
         result.path = path_to(e.node, shot->pieces);
         result.cost = g + shot->cost;
-        result.states = static_cast<int64_t>(nodes.size());
+        stored();
         return finish(SearchStatus::kFound, "");
       }
     }
@@ -736,9 +763,8 @@ Se2PlanResult Se2Planner::Search(const Pose2& start_in, const Pose2& goal_in, co
       const uint64_t k = key(next.x, next.y, sweep.end_heading);
       const int d = DriveDirection(primitive.motion);
       const double ng = g + PieceCost(primitive, direction, costs);
-      const auto it = best.find(k);
-      if (it != best.end()) {
-        const Node& other = nodes[static_cast<size_t>(it->second)];
+      if (const int32_t seen = best.Find(k); seen >= 0) {
+        const Node& other = nodes[static_cast<size_t>(seen)];
         if (other.closed || other.g <= ng) continue;
       }
       double next_spare = 0.0;
@@ -753,13 +779,13 @@ Se2PlanResult Se2Planner::Search(const Pose2& start_in, const Pose2& goal_in, co
       const double h = heuristic(next, next_direction);
       if (h == kInf) continue;
       const int32_t index = static_cast<int32_t>(nodes.size());
-      nodes.push_back({next, ng, e.node, primitive.motion, primitive.amount, next_direction, false,
-                       static_cast<int16_t>(sweep.end_heading), next_spare});
-      best[k] = index;
-      open.push({ng + h, ng, index});
+      nodes.push_back({next.x, next.y, ng, e.node, SpareDown(next_spare), static_cast<int16_t>(sweep.end_heading),
+                       static_cast<int8_t>(m), next_direction, false});
+      best.Set(k, index);
+      push({ng + h, ng, index});
     }
   }
-  result.states = static_cast<int64_t>(nodes.size());
+  stored();
   return finish(SearchStatus::kNoPath, "the goal is not reachable: every pose the footprint can reach from the start (" +
                                            std::to_string(result.expansions) + " expanded) was searched");
 }

@@ -16,7 +16,8 @@
 //             every motion (for every point of the polygon), against the map's walls with the
 //             requested clearance plus half that step, so the polygon swept between the
 //             checked poses keeps the requested clearance;
-//   storage   the visited states in a hash map of (x, y, heading) cells.
+//   storage   the visited states, 40 bytes each, found by their (x, y, heading) cell in an
+//             open-addressing table (state_table.h).
 // Bounded by SearchLimits (expansions, stored states, stop callback); every answer says why.
 
 #include <cstdint>
@@ -108,6 +109,7 @@ struct Se2PlanResult {
   double cost = 0.0;        // the MotionCosts cost of the path
   int64_t expansions = 0;
   int64_t states = 0;       // states stored (memory)
+  int64_t memory_bytes = 0; // the search's storage when it ended: its states, their table and the open list
   int64_t shots_tried = 0;  // analytic shots checked for collision
   CollisionCounters collisions;
 };
