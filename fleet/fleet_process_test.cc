@@ -278,13 +278,24 @@ heartbeat = none
   auto fleet = StartFleet(file, {});
   ASSERT_TRUE(WaitFor(10, [&] { return StartedPids(output(), "sleeper").size() == 1; })) << output();
   const std::string fd_dir = "/proc/" + std::to_string(StartedPids(output(), "sleeper")[0]) + "/fd";
-  // Until the exec has happened (the forked supervisor still has them all before it).
-  ASSERT_TRUE(WaitFor(5, [&] { return ReadTextFile(fd_dir.substr(0, fd_dir.size() - 3) + "/comm") == "sleep\n"; }));
+  // Until the exec has happened (the forked supervisor still has them all before it) and the
+  // dynamic loader has closed the libraries it opens for a moment after it (CI once read
+  // "3 -> .../libc.so.6" there).
   std::map<int, std::string> fds;  // descriptor -> what it is
-  for (const auto& entry : fs::directory_iterator(fd_dir)) {
+  const auto list = [&] {
+    fds.clear();
     std::error_code error;
-    fds[std::stoi(entry.path().filename().string())] = fs::read_symlink(entry.path(), error).string();
-  }
+    for (const auto& entry : fs::directory_iterator(fd_dir, error)) {
+      std::error_code link_error;
+      fds[std::stoi(entry.path().filename().string())] = fs::read_symlink(entry.path(), link_error).string();
+    }
+    for (const auto& [fd, target] : fds)
+      if (target.find(".so") != std::string::npos) return false;
+    return true;
+  };
+  ASSERT_TRUE(WaitFor(5, [&] {
+    return ReadTextFile(fd_dir.substr(0, fd_dir.size() - 3) + "/comm") == "sleep\n" && list();
+  }));
   fleet->Signal(SIGINT);
   EXPECT_EQ(fleet->Wait(10), 0) << output();
   std::string listing;
