@@ -57,20 +57,12 @@ FootprintCollisionChecker::FootprintCollisionChecker(const StaticSegmentIndex& w
       circumscribed_(CircumscribedRadius(footprint_)),
       discs_(DiscCover(footprint_, std::max(1, discs))) {
   const auto& v = footprint_.vertices;
-  const auto inset = [&](const Eigen::Vector2d& q) {
-    double e = std::numeric_limits<double>::infinity();
-    for (size_t i = 0; i < v.size(); ++i) e = std::min(e, PointToSegmentDistance(q, {v[i], v[(i + 1) % v.size()]}));
-    return e;
-  };
   box_lo_ = box_hi_ = v.front();
   for (const auto& p : v) {
     box_lo_ = box_lo_.cwiseMin(p);
     box_hi_ = box_hi_.cwiseMax(p);
   }
   box_footprint_ = IsAxisAlignedBox(v, box_lo_, box_hi_);
-  inside_.push_back({Eigen::Vector2d::Zero(), inscribed_});
-  for (const Disc& d : discs_)
-    if (PolygonContains(v, d.centre)) inside_.push_back({d.centre, inset(d.centre)});
 }
 
 PoseCheck FootprintCollisionChecker::Check(const Pose2& pose, double c, double s) const {
@@ -86,11 +78,10 @@ PoseCheck FootprintCollisionChecker::Check(const Pose2& pose, double c, double s
     ++counters_.free_by_field;
     return {false, spare};
   }
-  for (const Disc& q : inside_)
-    if (field_.UpperBound(world(q.centre)) < q.radius + margin_) {
-      ++counters_.blocked_by_field;
-      return {true, 0.0};
-    }
+  if (field_.UpperBound(pose.translation()) < inscribed_ + margin_) {
+    ++counters_.blocked_by_field;
+    return {true, 0.0};
+  }
   const double exact = ExactSpare(pose, c, s);
   return {exact < 0.0, std::max(0.0, exact)};
 }
