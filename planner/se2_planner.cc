@@ -106,6 +106,9 @@ std::array<MotionPiece, kPrimitives> Primitives(double r, double bin) {
            {Motion::kTurnInPlace, bin, 0.0, {}},
            {Motion::kTurnInPlace, -bin, 0.0, {}}}};
 }
+// m any point of the polygon moves between the poses of an analytic shot looked at before
+// it is swept (Search: a blocked shot is mostly found there, at a few checks).
+constexpr double kCoarseShotSpacing = 3.0;
 // Heading bins each primitive turns.
 constexpr int kHeadingChange[kPrimitives] = {0, 0, 1, -1, -1, 1, 1, -1};
 
@@ -607,6 +610,24 @@ Se2PlanResult Se2Planner::Search(const Pose2& start_in, const Pose2& goal_in, co
   // The analytic shot from `pose`: the cheapest obstacle-free shots that are short enough,
   // cheapest first; the first free one, or null.
   std::vector<AnalyticShot> shots;
+  // A shot that collides mostly does so far from where it starts, which a sweep from its start
+  // reaches last: poses kCoarseShotSpacing apart along each piece (for any point of the
+  // polygon) and each piece's end are looked at first, so a shot blocked there costs a few
+  // checks, not a sweep up to the wall; then the pieces are swept. The last end is the goal,
+  // checked free with the request.
+  const double rc = checker_->circumscribed_radius();
+  const auto blocked_coarsely = [&](const Pose2& pose, const AnalyticShot& shot) {
+    Pose2 from = pose;
+    for (size_t k = 0; k < shot.pieces.size(); ++k) {
+      const MotionPiece& p = shot.pieces[k];
+      const int m = std::max(1, static_cast<int>(std::ceil(Sweep(p, rc) / kCoarseShotSpacing)));
+      for (int i = 1; i < m; ++i)
+        if (!PoseFree(PoseAfter(from, p.motion, p.amount * static_cast<double>(i) / m, p.radius))) return true;
+      if (k + 1 < shot.pieces.size() && !PoseFree(p.end)) return true;
+      from = p.end;
+    }
+    return false;
+  };
   const auto free_shot = [&](const Pose2& pose, int direction) -> const AnalyticShot* {
     shots = AnalyticShots(pose, goal, r, costs, direction);
     for (const AnalyticShot& shot : shots) {
@@ -615,6 +636,7 @@ Se2PlanResult Se2Planner::Search(const Pose2& start_in, const Pose2& goal_in, co
       for (const MotionPiece& p : shot.pieces) length += p.motion == Motion::kTurnInPlace ? 0.0 : p.amount;
       if (length > options_.analytic_shot_max_length) continue;
       ++result.shots_tried;
+      if (blocked_coarsely(pose, shot)) continue;
       bool free = true;
       Pose2 from = pose;
       for (const MotionPiece& p : shot.pieces) {
