@@ -5,7 +5,6 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
-#include <queue>
 #include <sstream>
 
 #include "common/config.h"
