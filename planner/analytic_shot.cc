@@ -91,58 +91,49 @@ bool Trace(const Pose2& from, const Pose2& to, std::vector<MotionPiece>& pieces)
   return TranslationDistance(p, to) < 1e-6 && HeadingDistance(p, to) < 1e-6;
 }
 
-}  // namespace
-
-std::vector<AnalyticShot> AnalyticShots(const Pose2& from, const Pose2& to, double radius, const MotionCosts& costs,
-                                        int previous_direction) {
-  std::vector<std::vector<MotionPiece>> words = {TurnStraightTurn(from, to, false), TurnStraightTurn(from, to, true)};
+// A word's pieces: kind 0, 1 TIP-S-TIP forward or backing; 2 + 4 (side1 < 0) + 2 (side2 < 0)
+// + (reverse) a CSC word (ShotCandidates::Word). Empty when the CSC word does not exist.
+std::vector<MotionPiece> WordPieces(const Pose2& from, const Pose2& to, double radius, int kind) {
+  if (kind < 2) return TurnStraightTurn(from, to, kind == 1);
+  const int c = kind - 2, s1 = (c & 4) ? -1 : 1, s2 = (c & 2) ? -1 : 1;
+  if (!(c & 1)) return DubinsCsc(from, to, s1, s2, radius);
   const Pose2 from_turned(from.x, from.y, NormalizeAngle(from.theta + kPi));
   const Pose2 to_turned(to.x, to.y, NormalizeAngle(to.theta + kPi));
-  for (const int s1 : {1, -1})
-    for (const int s2 : {1, -1}) {
-      words.push_back(DubinsCsc(from, to, s1, s2, radius));
-      std::vector<MotionPiece> back = DubinsCsc(from_turned, to_turned, s1, s2, radius);
-      for (MotionPiece& piece : back) piece.motion = Reversed(piece.motion);
-      words.push_back(back);
-    }
-  std::vector<AnalyticShot> shots;
-  for (auto& w : words) {
-    if (w.empty() && TranslationDistance(from, to) + HeadingDistance(from, to) > 1e-9) continue;
-    if (!Trace(from, to, w)) continue;
-    AnalyticShot shot;
-    int direction = previous_direction;
-    for (const MotionPiece& piece : w) {
-      shot.cost += PieceCost(piece, direction, costs);
-      if (DriveDirection(piece.motion) != 0) direction = DriveDirection(piece.motion);
-    }
-    shot.pieces = std::move(w);
-    shots.push_back(std::move(shot));
-  }
-  std::sort(shots.begin(), shots.end(), [](const AnalyticShot& a, const AnalyticShot& b) { return a.cost < b.cost; });
-  return shots;
+  std::vector<MotionPiece> back = DubinsCsc(from_turned, to_turned, s1, s2, radius);
+  for (MotionPiece& piece : back) piece.motion = Reversed(piece.motion);
+  return back;
 }
 
-double CheapestShotCost(const Pose2& from, const Pose2& to, double radius, const MotionCosts& costs,
-                        int previous_direction) {
-  // The costs of AnalyticShots' words without building them (PieceCost's rules: a metre
-  // reversed costs reverse_factor, a turn in place turn_in_place_per_rad per radian, the
-  // first driven piece against previous_direction one direction_change; pieces under
-  // 1e-12 are left out).
+}  // namespace
+
+ShotCandidates::ShotCandidates(const Pose2& from, const Pose2& to, double radius, const MotionCosts& costs,
+                               int previous_direction)
+    : from_(from), to_(to), radius_(radius), costs_(costs), previous_direction_(previous_direction) {
+  // PieceCost's rules on the pieces the words would have: a metre reversed costs
+  // reverse_factor, a turn in place turn_in_place_per_rad per radian, the first driven piece
+  // against previous_direction one direction_change; pieces under 1e-12 are left out, and a
+  // word left with no piece is kept only where from and to are one pose (as AnalyticShots did).
   const auto drive = [&](double length, int direction) {
     if (length < 1e-12) return 0.0;
     const double change = previous_direction != 0 && direction != previous_direction ? costs.direction_change : 0.0;
     return length * (direction < 0 ? costs.reverse_factor : 1.0) + change;
   };
   const auto turn = [&](double a) { return std::abs(a) < 1e-12 ? 0.0 : costs.turn_in_place_per_rad * std::abs(a); };
-  double best = std::numeric_limits<double>::infinity();
+  const bool same_pose = TranslationDistance(from, to) + HeadingDistance(from, to) <= 1e-9;
+  const auto add = [&](int kind, double cost, bool empty) {
+    if (!empty || same_pose) words_[static_cast<size_t>(count_++)] = {kind, cost};
+  };
   const double d = TranslationDistance(from, to);
   if (d < 1e-12) {
-    best = turn(NormalizeAngle(to.theta - from.theta));
+    const double a = NormalizeAngle(to.theta - from.theta);
+    for (const int kind : {0, 1}) add(kind, turn(a), std::abs(a) < 1e-12);
   } else {
-    for (const bool reverse : {false, true}) {
-      const double heading = std::atan2(to.y - from.y, to.x - from.x) + (reverse ? kPi : 0.0);
-      best = std::min(best, turn(NormalizeAngle(heading - from.theta)) + drive(d, reverse ? -1 : 1) +
-                                turn(NormalizeAngle(to.theta - heading)));
+    for (const int kind : {0, 1}) {
+      const double heading = std::atan2(to.y - from.y, to.x - from.x) + (kind == 1 ? kPi : 0.0);
+      add(kind,
+          turn(NormalizeAngle(heading - from.theta)) + drive(d, kind == 1 ? -1 : 1) +
+              turn(NormalizeAngle(to.theta - heading)),
+          false);
     }
   }
   const Pose2 from_turned(from.x, from.y, NormalizeAngle(from.theta + kPi));
@@ -155,12 +146,40 @@ double CheapestShotCost(const Pose2& from, const Pose2& to, double radius, const
                             &straight, &t2))
           continue;
         const double a1 = radius * t1, a2 = radius * t2;
-        // The direction change is paid once, on the first piece driven.
         const double length = (a1 < 1e-12 ? 0.0 : a1) + (straight < 1e-12 ? 0.0 : straight) + (a2 < 1e-12 ? 0.0 : a2);
-        if (length < 1e-12) continue;  // an empty word: AnalyticShots leaves it out unless from == to
-        best = std::min(best, drive(length, direction));
+        add(2 + (s1 < 0 ? 4 : 0) + (s2 < 0 ? 2 : 0) + (direction < 0 ? 1 : 0), drive(length, direction),
+            length < 1e-12);
       }
-  return best;
+  std::sort(words_.begin(), words_.begin() + count_, [](const Word& a, const Word& b) { return a.cost < b.cost; });
+}
+
+std::optional<AnalyticShot> ShotCandidates::Build(int i) const {
+  AnalyticShot shot;
+  shot.pieces = WordPieces(from_, to_, radius_, words_[static_cast<size_t>(i)].kind);
+  if (!Trace(from_, to_, shot.pieces)) return std::nullopt;
+  int direction = previous_direction_;
+  for (const MotionPiece& piece : shot.pieces) {
+    shot.cost += PieceCost(piece, direction, costs_);
+    if (DriveDirection(piece.motion) != 0) direction = DriveDirection(piece.motion);
+  }
+  return shot;
+}
+
+std::vector<AnalyticShot> AnalyticShots(const Pose2& from, const Pose2& to, double radius, const MotionCosts& costs,
+                                        int previous_direction) {
+  const ShotCandidates candidates(from, to, radius, costs, previous_direction);
+  std::vector<AnalyticShot> shots;
+  for (int i = 0; i < candidates.size(); ++i)
+    if (std::optional<AnalyticShot> shot = candidates.Build(i)) shots.push_back(std::move(*shot));
+  // Sorted by the built costs (the candidates' within rounding).
+  std::stable_sort(shots.begin(), shots.end(), [](const AnalyticShot& a, const AnalyticShot& b) { return a.cost < b.cost; });
+  return shots;
+}
+
+double CheapestShotCost(const Pose2& from, const Pose2& to, double radius, const MotionCosts& costs,
+                        int previous_direction) {
+  const ShotCandidates candidates(from, to, radius, costs, previous_direction);
+  return candidates.size() > 0 ? candidates.cost(0) : std::numeric_limits<double>::infinity();
 }
 
 }  // namespace minenav

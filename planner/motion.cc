@@ -56,6 +56,41 @@ Pose2 PoseAfter(const Pose2& start, Motion motion, double amount, double radius)
   return {cx + side * radius * std::sin(theta), cy - side * radius * std::cos(theta), NormalizeAngle(theta)};
 }
 
+PieceSampler::PieceSampler(const Pose2& start, Motion motion, double radius)
+    : start_(start),
+      direction_(DriveDirection(motion)),
+      side_(TurnSide(motion)),
+      radius_(radius),
+      cos_start_(std::cos(start.theta)),
+      sin_start_(std::sin(start.theta)) {
+  if (side_ != 0) {
+    centre_x_ = start.x - side_ * radius * sin_start_;
+    centre_y_ = start.y + side_ * radius * cos_start_;
+  }
+}
+
+PieceSampler::Sample PieceSampler::At(double amount) const {
+  Sample q;
+  if (direction_ == 0) {  // turn in place
+    q.pose = {start_.x, start_.y, start_.theta + amount};
+    q.cos_theta = std::cos(q.pose.theta);
+    q.sin_theta = std::sin(q.pose.theta);
+    return q;
+  }
+  const double s = direction_ * amount;
+  if (side_ == 0) {
+    q.pose = {start_.x + s * cos_start_, start_.y + s * sin_start_, start_.theta};
+    q.cos_theta = cos_start_;
+    q.sin_theta = sin_start_;
+    return q;
+  }
+  const double theta = start_.theta + side_ * s / radius_;
+  q.cos_theta = std::cos(theta);
+  q.sin_theta = std::sin(theta);
+  q.pose = {centre_x_ + side_ * radius_ * q.sin_theta, centre_y_ - side_ * radius_ * q.cos_theta, theta};
+  return q;
+}
+
 double PlannedPath::Length() const {
   double length = 0.0;
   for (const MotionPiece& p : pieces)

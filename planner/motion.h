@@ -51,6 +51,30 @@ struct MotionPiece {
 // on arcs of `radius` (m).
 Pose2 PoseAfter(const Pose2& start, Motion motion, double amount, double radius);
 
+// Poses along one piece from its start, for collision sweeps: PoseAfter's maths with the
+// piece's constants worked out once, so a pose along a straight move costs no trigonometry
+// and one along an arc or a turn in place one sine and cosine (PoseAfter: two or three and a
+// normalisation). Each pose comes with its heading's cosine and sine, which the collision
+// checker needs; the heading itself is not normalised (start theta plus the turn so far).
+class PieceSampler {
+ public:
+  struct Sample {
+    Pose2 pose;  // theta not normalised
+    double cos_theta = 1.0, sin_theta = 0.0;
+  };
+  PieceSampler(const Pose2& start, Motion motion, double radius);
+  // After `amount` of the motion (m, or rad for a turn in place): PoseAfter(start, motion,
+  // amount, radius) within rounding (1e-12 m and rad for amounts of a few hundred metres).
+  Sample At(double amount) const;
+
+ private:
+  Pose2 start_;
+  int direction_, side_;
+  double radius_;
+  double cos_start_, sin_start_;
+  double centre_x_ = 0.0, centre_y_ = 0.0;  // of the arc
+};
+
 struct PlannedPath {
   Pose2 start;
   std::vector<MotionPiece> pieces;

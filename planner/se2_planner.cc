@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <optional>
 #include <sstream>
 
 #include "common/config.h"
@@ -274,10 +275,12 @@ bool Se2Planner::PieceCollides(const Pose2& from, const MotionPiece& piece) cons
   const double sweep = Sweep(piece, checker_->circumscribed_radius());
   const int n = std::max(1, static_cast<int>(std::ceil(sweep / options_.collision_step)));
   const PoseCheck at_start = checker_->Check(from);
+  const PieceSampler along(from, piece.motion, piece.radius);
   return SweepCollides(
       n, sweep / n, options_.collision_step, at_start.collides ? 0.0 : at_start.spare,
       [&](int i) {
-        return checker_->Check(PoseAfter(from, piece.motion, piece.amount * static_cast<double>(i) / n, piece.radius));
+        const PieceSampler::Sample q = along.At(piece.amount * static_cast<double>(i) / n);
+        return checker_->Check(q.pose, q.cos_theta, q.sin_theta);
       },
       nullptr);
 }
@@ -607,8 +610,9 @@ Se2PlanResult Se2Planner::Search(const Pose2& start_in, const Pose2& goal_in, co
   const MotionCosts& costs = options_.costs;
   const double r = options_.turn_radius;
   // The analytic shot from `pose`: the cheapest obstacle-free shots that are short enough,
-  // cheapest first; the first free one, or null.
-  std::vector<AnalyticShot> shots;
+  // cheapest first; the first free one (in `tried`), or null. A shot's pieces are built only
+  // when it is tried.
+  std::optional<AnalyticShot> tried;
   // A shot that collides mostly does so far from where it starts, which a sweep from its start
   // reaches last: poses kCoarseShotSpacing apart along each piece (for any point of the
   // polygon) and each piece's end are looked at first, so a shot blocked there costs a few
@@ -620,32 +624,37 @@ Se2PlanResult Se2Planner::Search(const Pose2& start_in, const Pose2& goal_in, co
     for (size_t k = 0; k < shot.pieces.size(); ++k) {
       const MotionPiece& p = shot.pieces[k];
       const int m = std::max(1, static_cast<int>(std::ceil(Sweep(p, rc) / kCoarseShotSpacing)));
-      for (int i = 1; i < m; ++i)
-        if (!PoseFree(PoseAfter(from, p.motion, p.amount * static_cast<double>(i) / m, p.radius))) return true;
+      const PieceSampler along(from, p.motion, p.radius);
+      for (int i = 1; i < m; ++i) {
+        const PieceSampler::Sample q = along.At(p.amount * static_cast<double>(i) / m);
+        if (checker_->Check(q.pose, q.cos_theta, q.sin_theta).collides) return true;
+      }
       if (k + 1 < shot.pieces.size() && !PoseFree(p.end)) return true;
       from = p.end;
     }
     return false;
   };
   const auto free_shot = [&](const Pose2& pose, int direction) -> const AnalyticShot* {
-    shots = AnalyticShots(pose, goal, r, costs, direction);
-    for (const AnalyticShot& shot : shots) {
-      if (shot.cost > options_.analytic_shot_max_cost_ratio * shots.front().cost) break;  // cheapest first
+    const ShotCandidates candidates(pose, goal, r, costs, direction);
+    for (int i = 0; i < candidates.size(); ++i) {
+      if (candidates.cost(i) > options_.analytic_shot_max_cost_ratio * candidates.cost(0)) break;  // cheapest first
+      tried = candidates.Build(i);
+      if (!tried) continue;
       double length = 0.0;
-      for (const MotionPiece& p : shot.pieces) length += p.motion == Motion::kTurnInPlace ? 0.0 : p.amount;
+      for (const MotionPiece& p : tried->pieces) length += p.motion == Motion::kTurnInPlace ? 0.0 : p.amount;
       if (length > options_.analytic_shot_max_length) continue;
       ++result.shots_tried;
-      if (blocked_coarsely(pose, shot)) continue;
+      if (blocked_coarsely(pose, *tried)) continue;
       bool free = true;
       Pose2 from = pose;
-      for (const MotionPiece& p : shot.pieces) {
+      for (const MotionPiece& p : tried->pieces) {
         if (PieceCollides(from, p)) {
           free = false;
           break;
         }
         from = p.end;
       }
-      if (free) return &shot;
+      if (free) return &*tried;
     }
     return nullptr;
   };
@@ -655,10 +664,10 @@ Se2PlanResult Se2Planner::Search(const Pose2& start_in, const Pose2& goal_in, co
   // the answer is the search's, only sooner.
   const SearchStatus first = CheckLimits(limits, 0, 1);
   if (first != SearchStatus::kFound) return finish(first, LimitReason(first, 0, 1));
-  if (const AnalyticShot* shot = free_shot(start, 0)) {
+  if (const AnalyticShot* free = free_shot(start, 0)) {
     result.path.start = start;
-    result.path.pieces = MergePieces(shot->pieces);
-    result.cost = shot->cost;
+    result.path.pieces = MergePieces(free->pieces);
+    result.cost = free->cost;
     result.expansions = result.states = 1;
     return finish(SearchStatus::kFound, "");
   }
@@ -768,9 +777,9 @@ Se2PlanResult Se2Planner::Search(const Pose2& start_in, const Pose2& goal_in, co
     // The analytic shot (the start's was tried before the search).
     if (e.node != 0 && (result.expansions % options_.analytic_shot_interval == 1 ||
                         options_.analytic_shot_interval == 1 || key(pose.x, pose.y, heading) == goal_key)) {
-      if (const AnalyticShot* shot = free_shot(pose, direction)) {
-        result.path = path_to(e.node, shot->pieces);
-        result.cost = g + shot->cost;
+      if (const AnalyticShot* free = free_shot(pose, direction)) {
+        result.path = path_to(e.node, free->pieces);
+        result.cost = g + free->cost;
         stored();
         return finish(SearchStatus::kFound, "");
       }

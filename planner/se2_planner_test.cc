@@ -63,6 +63,27 @@ TEST(MotionTest, ArcsTurnAboutTheCentreOnTheirSide) {
   EXPECT_EQ(t.x, 0.0);
 }
 
+TEST(MotionTest, ThePieceSamplerGivesPoseAftersPosesWithTheirCosineAndSine) {
+  // Every motion, from starts in every quadrant, at amounts up to 200 m (and 7 rad turning):
+  // the sampler's poses are PoseAfter's, its cosine and sine those of PoseAfter's heading.
+  std::mt19937 rng(13);
+  std::uniform_real_distribution<double> coordinate(-500.0, 500.0), angle(-kPi, kPi), unit(0.0, 1.0);
+  for (int motion = 0; motion < 7; ++motion)
+    for (int trial = 0; trial < 200; ++trial) {
+      const Motion m = static_cast<Motion>(motion);
+      const Pose2 start(coordinate(rng), coordinate(rng), angle(rng));
+      const double radius = m == Motion::kTurnInPlace || !IsArc(m) ? 0.0 : 1.0 + 9.0 * unit(rng);
+      const double amount = m == Motion::kTurnInPlace ? 14.0 * (unit(rng) - 0.5) : 200.0 * unit(rng);
+      const PieceSampler::Sample q = PieceSampler(start, m, radius).At(amount);
+      const Pose2 want = PoseAfter(start, m, amount, radius);
+      EXPECT_NEAR(q.pose.x, want.x, 1e-9) << ToString(m) << " " << amount;
+      EXPECT_NEAR(q.pose.y, want.y, 1e-9) << ToString(m) << " " << amount;
+      EXPECT_NEAR(NormalizeAngle(q.pose.theta - want.theta), 0.0, 1e-12) << ToString(m) << " " << amount;
+      EXPECT_NEAR(q.cos_theta, std::cos(want.theta), 1e-12);
+      EXPECT_NEAR(q.sin_theta, std::sin(want.theta), 1e-12);
+    }
+}
+
 TEST(MotionTest, MergedPathsCountLengthAndReversals) {
   PlannedPath p;
   p.pieces = MergePieces({{Motion::kForward, 1.0, 0.0, {}},
@@ -128,6 +149,46 @@ TEST(AnalyticShotTest, TheCheapestShotCostIsTheCheapestShotsCost) {
           << from << " -> " << to << " after " << previous;
     }
   }
+}
+
+TEST(AnalyticShotTest, ACandidatesCostIsThePieceCostOfTheShotItBuilds) {
+  // The costs the planner orders its shots by, before building them, against PieceCost over
+  // the built pieces; cheapest first; every word that exists is a candidate (the two
+  // turn-straight-turn words always, the CSC words where the circles allow).
+  std::mt19937 rng(21);
+  std::uniform_real_distribution<double> u(-20, 20), a(-kPi, kPi);
+  MotionCosts costs;
+  costs.turn_in_place_per_rad = 2.0;
+  costs.reverse_factor = 1.5;
+  costs.direction_change = 3.0;
+  int built = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    const Pose2 from(u(rng), u(rng), a(rng)), to(u(rng), u(rng), a(rng));
+    for (const int previous : {0, 1, -1}) {
+      const ShotCandidates candidates(from, to, 4.0, costs, previous);
+      ASSERT_GE(candidates.size(), 2);
+      ASSERT_LE(candidates.size(), 10);
+      for (int i = 0; i < candidates.size(); ++i) {
+        if (i > 0) {
+          EXPECT_LE(candidates.cost(i - 1), candidates.cost(i));
+        }
+        const std::optional<AnalyticShot> shot = candidates.Build(i);
+        if (!shot) continue;
+        ++built;
+        double cost = 0.0;
+        int direction = previous;
+        for (const MotionPiece& p : shot->pieces) {
+          cost += PieceCost(p, direction, costs);
+          if (DriveDirection(p.motion) != 0) direction = DriveDirection(p.motion);
+        }
+        EXPECT_NEAR(shot->cost, cost, 1e-9);
+        EXPECT_NEAR(candidates.cost(i), cost, 1e-9) << from << " -> " << to << " candidate " << i;
+        EXPECT_NEAR(TranslationDistance(shot->pieces.back().end, to), 0.0, 1e-6);
+        EXPECT_NEAR(HeadingDistance(shot->pieces.back().end, to), 0.0, 1e-6);
+      }
+    }
+  }
+  EXPECT_GT(built, 300 * 3 * 6);  // most CSC words exist this far apart, and all are built
 }
 
 TEST(FootprintTest, RectangleRadiiAndValidation) {
