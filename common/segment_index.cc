@@ -50,20 +50,30 @@ GridFrame GridFrame::Covering(const Eigen::Vector2d& lo, const Eigen::Vector2d& 
 }
 
 namespace {
-double PointBoxDistance(const Eigen::Vector2d& p, const Eigen::Vector2d& lo, const Eigen::Vector2d& hi) {
+// Squared distances: BoxSegmentMinDistance takes one square root, of the least (the planner's
+// exact collision test calls it for every wall near every pose it cannot decide by the field).
+double PointBoxSquaredDistance(const Eigen::Vector2d& p, const Eigen::Vector2d& lo, const Eigen::Vector2d& hi) {
   const double dx = std::max({lo.x() - p.x(), 0.0, p.x() - hi.x()});
   const double dy = std::max({lo.y() - p.y(), 0.0, p.y() - hi.y()});
-  return std::hypot(dx, dy);
+  return dx * dx + dy * dy;
+}
+// From p to the segment a + t d, t in [0, 1] (len2 = |d|^2; a point when 0).
+double PointSegmentSquaredDistance(const Eigen::Vector2d& p, const Eigen::Vector2d& a, const Eigen::Vector2d& d,
+                                   double len2) {
+  const double t = len2 > 0.0 ? std::clamp((p - a).dot(d) / len2, 0.0, 1.0) : 0.0;
+  return (a + t * d - p).squaredNorm();
 }
 }  // namespace
 
 double BoxSegmentMinDistance(const Eigen::Vector2d& lo, const Eigen::Vector2d& hi, const Segment& s) {
-  if (SegmentMeetsBox(s.a, s.b - s.a, lo, hi)) return 0.0;
+  const Eigen::Vector2d d = s.b - s.a;
+  if (SegmentMeetsBox(s.a, d, lo, hi)) return 0.0;
   // Disjoint convex sets: the least distance is between a vertex of one and the other.
-  const Eigen::Vector2d c[4] = {lo, {hi.x(), lo.y()}, hi, {lo.x(), hi.y()}};
-  double best = std::min(PointBoxDistance(s.a, lo, hi), PointBoxDistance(s.b, lo, hi));
-  for (const Eigen::Vector2d& corner : c) best = std::min(best, PointToSegmentDistance(corner, s));
-  return best;
+  const double len2 = d.squaredNorm();
+  double best = std::min(PointBoxSquaredDistance(s.a, lo, hi), PointBoxSquaredDistance(s.b, lo, hi));
+  for (const Eigen::Vector2d& corner : {lo, Eigen::Vector2d(hi.x(), lo.y()), hi, Eigen::Vector2d(lo.x(), hi.y())})
+    best = std::min(best, PointSegmentSquaredDistance(corner, s.a, d, len2));
+  return std::sqrt(best);
 }
 
 double BoxSegmentMaxDistance(const Eigen::Vector2d& lo, const Eigen::Vector2d& hi, const Segment& s) {
