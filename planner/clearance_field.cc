@@ -5,7 +5,7 @@
 namespace minenav {
 
 ClearanceField::ClearanceField(const std::vector<Segment>& walls, const GridFrame& frame, double max_distance)
-    : frame_(frame), max_distance_(max_distance), values_(static_cast<size_t>(frame.size()), max_distance) {
+    : frame_(frame), inverse_cell_(1.0 / frame.cell), max_distance_(max_distance), values_(static_cast<size_t>(frame.size()), max_distance) {
   // Each wall lowers the cells within max_distance of it: per row of cells, only the run of
   // cells near the part of the wall within reach of that row. A long diagonal wall costs its
   // band (length x reach), not its bounding box (issue 16: a map of long walls far apart took

@@ -34,13 +34,15 @@ class ClearanceField {
   // distance is 1-Lipschitz: true(p) >= value - |p - c| (a capped value is below the truth
   // too), and, where the value is under the cap, true(p) <= value + |p - c|. Outside the
   // frame: -infinity and +infinity (nothing known).
+  // (The cell is found by a multiplication, not GridFrame's division: the bounds hold from
+  // any cell's centre, so a point on a cell edge may round either way.)
   double LowerBound(const Eigen::Vector2d& p) const {
-    const int ix = frame_.CellX(p.x()), iy = frame_.CellY(p.y());
+    const int ix = CellX(p.x()), iy = CellY(p.y());
     if (!frame_.Contains(ix, iy)) return -std::numeric_limits<double>::infinity();
     return values_[static_cast<size_t>(frame_.Index(ix, iy))] - OffsetFromCentre(p, ix, iy);
   }
   double UpperBound(const Eigen::Vector2d& p) const {
-    const int ix = frame_.CellX(p.x()), iy = frame_.CellY(p.y());
+    const int ix = CellX(p.x()), iy = CellY(p.y());
     if (!frame_.Contains(ix, iy)) return std::numeric_limits<double>::infinity();
     const double v = values_[static_cast<size_t>(frame_.Index(ix, iy))];
     return v < max_distance_ ? v + OffsetFromCentre(p, ix, iy) : std::numeric_limits<double>::infinity();
@@ -52,12 +54,15 @@ class ClearanceField {
   const GridFrame& frame() const { return frame_; }
 
  private:
+  int CellX(double x) const { return ClampedFloor((x - frame_.x0) * inverse_cell_, -1, frame_.nx); }
+  int CellY(double y) const { return ClampedFloor((y - frame_.y0) * inverse_cell_, -1, frame_.ny); }
   double OffsetFromCentre(const Eigen::Vector2d& p, int ix, int iy) const {
     const double dx = p.x() - (frame_.x0 + (ix + 0.5) * frame_.cell), dy = p.y() - (frame_.y0 + (iy + 0.5) * frame_.cell);
     return std::sqrt(dx * dx + dy * dy);
   }
 
   GridFrame frame_;
+  double inverse_cell_;  // 1 / frame_.cell
   double max_distance_;
   std::vector<double> values_;
   int64_t distance_tests_ = 0;

@@ -241,6 +241,33 @@ TEST(ClearanceFieldTest, EqualsTheDistanceOfEveryCellToEveryWall) {
     }
 }
 
+TEST(ClearanceFieldTest, ItsBoundsHoldTheTrueClearanceAnywhereOnEdgesAndCornersToo) {
+  // The collision checker's quick decisions rest on these bounds: at random points, at
+  // points on cell edges and corners (where the cell the bound reads may round either way)
+  // and outside the frame, LowerBound <= the distance to the nearest wall <= UpperBound.
+  std::mt19937 rng(12);
+  std::uniform_real_distribution<double> u(-30.0, 30.0), wide(-33.0, 33.0);
+  std::vector<Segment> walls;
+  for (int i = 0; i < 20; ++i) walls.emplace_back(u(rng), u(rng), u(rng), u(rng));
+  const GridFrame frame = GridFrame::Covering(Eigen::Vector2d(-30, -30), Eigen::Vector2d(30, 30), 0.2, 0.0);
+  const double cap = 3.0;
+  const ClearanceField field(walls, frame, cap);
+  std::uniform_int_distribution<int> cell_x(0, frame.nx), cell_y(0, frame.ny);
+  int bounded_above = 0;
+  for (int trial = 0; trial < 20000; ++trial) {
+    Eigen::Vector2d p(wide(rng), wide(rng));
+    if (trial % 3 == 1) p.x() = frame.x0 + cell_x(rng) * frame.cell;  // on a column edge
+    if (trial % 3 == 2) p = frame.CellMin(cell_x(rng), cell_y(rng));  // on a corner
+    double truth = std::numeric_limits<double>::infinity();
+    for (const Segment& w : walls) truth = std::min(truth, PointToSegmentDistance(p, w));
+    ASSERT_LE(field.LowerBound(p), truth + 1e-12) << p.transpose();
+    const double upper = field.UpperBound(p);
+    ASSERT_GE(upper, truth - 1e-12) << p.transpose();
+    if (upper < cap) ++bounded_above;
+  }
+  EXPECT_GT(bounded_above, 5000);  // the upper bound is not only ever infinite
+}
+
 // Found by the fuzz targets (issue 16, path_planner): a map of long walls far apart. Each wall
 // lowered every cell of its bounding box: a diagonal across a 1 km map is 2.5e7 cells at
 // 0.2 m (minutes in the fuzz build). A wall now costs its band: (length / cell + 1) rows or
