@@ -112,17 +112,22 @@ double FootprintCollisionChecker::ExactSpare(const Pose2& pose, double c, double
     const Eigen::Vector2d da = w.a - pose.translation(), db = w.b - pose.translation();
     const Eigen::Vector2d a(c * da.x() + s * da.y(), -s * da.x() + c * da.y());
     const Eigen::Vector2d b(c * db.x() + s * db.y(), -s * db.x() + c * db.y());
-    if (std::max(a.x(), b.x()) < lo.x() || std::min(a.x(), b.x()) > hi.x() || std::max(a.y(), b.y()) < lo.y() ||
-        std::min(a.y(), b.y()) > hi.y())
-      return;
     if (box_footprint_) {
       // The polygon is its box (common/segment_index.h's box-to-segment distance: 0 when the
-      // wall meets it).
+      // wall meets it). The gap between the wall's box and the polygon's along x or y is a
+      // lower bound on their distance: a wall that far cannot come nearer than the nearest so
+      // far (which starts at margin + cap), and is skipped without the distance.
+      const double gap_x = std::max({box_lo_.x() - std::max(a.x(), b.x()), std::min(a.x(), b.x()) - box_hi_.x(), 0.0});
+      const double gap_y = std::max({box_lo_.y() - std::max(a.y(), b.y()), std::min(a.y(), b.y()) - box_hi_.y(), 0.0});
+      if (std::max(gap_x, gap_y) >= nearest) return;
       const double distance = BoxSegmentMinDistance(box_lo_, box_hi_, Segment(a, b));
       hit = distance < margin_ || distance <= 0.0;
       nearest = std::min(nearest, distance);
       return;
     }
+    if (std::max(a.x(), b.x()) < lo.x() || std::min(a.x(), b.x()) > hi.x() || std::max(a.y(), b.y()) < lo.y() ||
+        std::min(a.y(), b.y()) > hi.y())
+      return;
     if (PolygonContains(v, a) || PolygonContains(v, b)) {
       hit = true;
       return;
