@@ -33,28 +33,46 @@ std::vector<MotionPiece> TurnStraightTurn(const Pose2& a, const Pose2& b, bool r
   return p;
 }
 
-// The centre of the turning circle on `side` (+1 left, -1 right) of pose p.
+// The centre of the turning circle on `side` (+1 left, -1 right) of pose p, whose heading's
+// cosine and sine are c and s.
+Eigen::Vector2d Centre(const Pose2& p, double c, double s, int side, double r) {
+  return {p.x - side * r * s, p.y + side * r * c};
+}
 Eigen::Vector2d Centre(const Pose2& p, int side, double r) {
-  return {p.x - side * r * std::sin(p.theta), p.y + side * r * std::cos(p.theta)};
+  return Centre(p, std::cos(p.theta), std::sin(p.theta), side, r);
 }
 
-// The parts of a forward Dubins CSC word (side1, side2: +1 L, -1 R) from a to b: the first
-// arc's and the last arc's turn (rad, in [0, 2 pi)) and the straight between (m); false if
-// the word does not exist.
+// The line from one turning circle's centre to another's: its length and heading.
+struct CentreLine {
+  double dist = 0.0, phi = 0.0;
+};
+CentreLine LineBetween(const Eigen::Vector2d& c1, const Eigen::Vector2d& c2) {
+  const Eigen::Vector2d d = c2 - c1;
+  return {d.norm(), std::atan2(d.y(), d.x())};
+}
+
+// The parts of a forward Dubins CSC word (side1, side2: +1 L, -1 R) from heading theta_a on
+// the circle of side1 to heading theta_b on the circle of side2, `line` joining their
+// centres: the first arc's and the last arc's turn (rad, in [0, 2 pi)) and the straight
+// between (m); false if the word does not exist.
+bool CscParts(double theta_a, double theta_b, const CentreLine& line, int side1, int side2, double r, double* turn1,
+              double* straight, double* turn2) {
+  *straight = line.dist;
+  double psi = line.phi;  // tangent heading
+  if (side1 != side2) {
+    if (line.dist < 2.0 * r) return false;
+    *straight = std::sqrt(line.dist * line.dist - 4.0 * r * r);
+    psi = line.phi - side2 * std::atan2(2.0 * r, *straight);  // LSR: +, RSL: -
+  }
+  *turn1 = Mod2Pi(side1 * (psi - theta_a));
+  *turn2 = Mod2Pi(side2 * (theta_b - psi));
+  return true;
+}
+
 bool DubinsCscParts(const Pose2& a, const Pose2& b, int side1, int side2, double r, double* turn1, double* straight,
                     double* turn2) {
-  const Eigen::Vector2d c1 = Centre(a, side1, r), c2 = Centre(b, side2, r), d = c2 - c1;
-  const double dist = d.norm(), phi = std::atan2(d.y(), d.x());
-  *straight = dist;
-  double psi = phi;  // tangent heading
-  if (side1 != side2) {
-    if (dist < 2.0 * r) return false;
-    *straight = std::sqrt(dist * dist - 4.0 * r * r);
-    psi = phi - side2 * std::atan2(2.0 * r, *straight);  // LSR: +, RSL: -
-  }
-  *turn1 = Mod2Pi(side1 * (psi - a.theta));
-  *turn2 = Mod2Pi(side2 * (b.theta - psi));
-  return true;
+  return CscParts(a.theta, b.theta, LineBetween(Centre(a, side1, r), Centre(b, side2, r)), side1, side2, r, turn1,
+                  straight, turn2);
 }
 
 // A forward Dubins CSC word from a to b; empty if it does not exist.
@@ -128,23 +146,35 @@ ShotCandidates::ShotCandidates(const Pose2& from, const Pose2& to, double radius
     const double a = NormalizeAngle(to.theta - from.theta);
     for (const int kind : {0, 1}) add(kind, turn(a), std::abs(a) < 1e-12);
   } else {
+    const double towards = std::atan2(to.y - from.y, to.x - from.x);
     for (const int kind : {0, 1}) {
-      const double heading = std::atan2(to.y - from.y, to.x - from.x) + (kind == 1 ? kPi : 0.0);
+      const double heading = towards + (kind == 1 ? kPi : 0.0);
       add(kind,
           turn(NormalizeAngle(heading - from.theta)) + drive(d, kind == 1 ? -1 : 1) +
               turn(NormalizeAngle(to.theta - heading)),
           false);
     }
   }
-  const Pose2 from_turned(from.x, from.y, NormalizeAngle(from.theta + kPi));
-  const Pose2 to_turned(to.x, to.y, NormalizeAngle(to.theta + kPi));
+  // The CSC words: the problem with both headings turned by pi (driven in reverse) has its
+  // left circle where the problem's right one is, so the four lines between the turning
+  // circles' centres serve all eight words.
+  const double from_turned = NormalizeAngle(from.theta + kPi), to_turned = NormalizeAngle(to.theta + kPi);
+  const double cos_from = std::cos(from.theta), sin_from = std::sin(from.theta);
+  const double cos_to = std::cos(to.theta), sin_to = std::sin(to.theta);
+  CentreLine lines[2][2];  // [side1 < 0][side2 < 0], of the problem itself
+  for (const int s1 : {1, -1})
+    for (const int s2 : {1, -1})
+      lines[s1 < 0][s2 < 0] =
+          LineBetween(Centre(from, cos_from, sin_from, s1, radius), Centre(to, cos_to, sin_to, s2, radius));
   for (const int s1 : {1, -1})
     for (const int s2 : {1, -1})
       for (const int direction : {1, -1}) {
         double t1 = 0.0, straight = 0.0, t2 = 0.0;
-        if (!DubinsCscParts(direction > 0 ? from : from_turned, direction > 0 ? to : to_turned, s1, s2, radius, &t1,
-                            &straight, &t2))
-          continue;
+        const bool exists = direction > 0 ? CscParts(from.theta, to.theta, lines[s1 < 0][s2 < 0], s1, s2, radius, &t1,
+                                                     &straight, &t2)
+                                          : CscParts(from_turned, to_turned, lines[s1 > 0][s2 > 0], s1, s2, radius,
+                                                     &t1, &straight, &t2);
+        if (!exists) continue;
         const double a1 = radius * t1, a2 = radius * t2;
         const double length = (a1 < 1e-12 ? 0.0 : a1) + (straight < 1e-12 ? 0.0 : straight) + (a2 < 1e-12 ? 0.0 : a2);
         add(2 + (s1 < 0 ? 4 : 0) + (s2 < 0 ? 2 : 0) + (direction < 0 ? 1 : 0), drive(length, direction),
