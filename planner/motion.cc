@@ -42,20 +42,6 @@ int TurnSide(Motion motion) {
   return 0;
 }
 
-Pose2 PoseAfter(const Pose2& start, Motion motion, double amount, double radius) {
-  if (motion == Motion::kTurnInPlace) return {start.x, start.y, NormalizeAngle(start.theta + amount)};
-  const double s = DriveDirection(motion) * amount;  // signed distance along the heading
-  const int side = TurnSide(motion);
-  if (side == 0)
-    return {start.x + s * std::cos(start.theta), start.y + s * std::sin(start.theta), start.theta};
-  // About the centre at distance R on the given side: heading change dtheta = side s / R.
-  const double dtheta = side * s / radius;
-  const double cx = start.x - side * radius * std::sin(start.theta);
-  const double cy = start.y + side * radius * std::cos(start.theta);
-  const double theta = start.theta + dtheta;
-  return {cx + side * radius * std::sin(theta), cy - side * radius * std::cos(theta), NormalizeAngle(theta)};
-}
-
 PieceSampler::PieceSampler(const Pose2& start, Motion motion, double radius)
     : start_(start),
       direction_(DriveDirection(motion)),
@@ -89,6 +75,12 @@ PieceSampler::Sample PieceSampler::At(double amount) const {
   q.sin_theta = std::sin(theta);
   q.pose = {centre_x_ + side_ * radius_ * q.sin_theta, centre_y_ - side_ * radius_ * q.cos_theta, theta};
   return q;
+}
+
+Pose2 PoseAfter(const Pose2& start, Motion motion, double amount, double radius) {
+  Pose2 p = PieceSampler(start, motion, radius).At(amount).pose;
+  p.theta = NormalizeAngle(p.theta);
+  return p;
 }
 
 double PlannedPath::Length() const {

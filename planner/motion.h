@@ -51,11 +51,13 @@ struct MotionPiece {
 // on arcs of `radius` (m).
 Pose2 PoseAfter(const Pose2& start, Motion motion, double amount, double radius);
 
-// Poses along one piece from its start, for collision sweeps: PoseAfter's maths with the
-// piece's constants worked out once, so a pose along a straight move costs no trigonometry
-// and one along an arc or a turn in place one sine and cosine (PoseAfter: two or three and a
-// normalisation). Each pose comes with its heading's cosine and sine, which the collision
-// checker needs; the heading itself is not normalised (start theta plus the turn so far).
+// Poses along one piece from its start (the one implementation of the motions' maths;
+// PoseAfter is one pose of it, normalised), for collision sweeps: the piece's constants are
+// worked out once, so a pose along a straight move costs no trigonometry and one along an
+// arc or a turn in place one sine and cosine. Each pose comes with its heading's cosine and
+// sine, which the collision checker needs; the heading itself is not normalised (start theta
+// plus the turn so far). About the centre at distance R on the arc's side, the heading
+// changes by side * d * s / R over s m driven in direction d.
 class PieceSampler {
  public:
   struct Sample {
@@ -63,8 +65,7 @@ class PieceSampler {
     double cos_theta = 1.0, sin_theta = 0.0;
   };
   PieceSampler(const Pose2& start, Motion motion, double radius);
-  // After `amount` of the motion (m, or rad for a turn in place): PoseAfter(start, motion,
-  // amount, radius) within rounding (1e-12 m and rad for amounts of a few hundred metres).
+  // After `amount` of the motion (m, or rad for a turn in place).
   Sample At(double amount) const;
 
  private:
